@@ -1,0 +1,103 @@
+// `shaderlab render` and `shaderlab info`.
+#include "commands.h"
+
+#include "shaderlab/gl_context.h"
+#include "shaderlab/lab_catalog.h"
+#include "shaderlab/lab_spec.h"
+#include "shaderlab/paths.h"
+#include "shaderlab/renderer.h"
+
+#include <filesystem>
+#include <iostream>
+
+namespace fs = std::filesystem;
+
+namespace shaderlab::cli {
+
+namespace {
+
+void printDiagnostics(const LabRender& r, const std::string& lab_id) {
+    for (const Diagnostic& d : r.diagnostics) {
+        std::cerr << lab_id << "/" << d.file;
+        if (d.line > 0) std::cerr << ":" << d.line;
+        if (d.column > 0) std::cerr << ":" << d.column;
+        std::cerr << ": " << d.severity << ": " << d.message << "\n";
+    }
+}
+
+}  // namespace
+
+int runInfo(const std::string& backend_name) {
+    Backend backend{};
+    parseBackend(backend_name, &backend);
+    ContextResult ctx = createHeadlessContext(backend);
+    if (!ctx.context) {
+        std::cerr << "shaderlab: " << ctx.error << "\n";
+        return 2;
+    }
+    const GlInfo& info = ctx.context->info();
+    std::cout << "backend:  " << ctx.context->backend() << "\n"
+              << "vendor:   " << info.vendor << "\n"
+              << "renderer: " << info.renderer << "\n"
+              << "version:  " << info.version << "\n";
+    return 0;
+}
+
+int runRender(const RenderArgs& args) {
+    const std::string labs_root = args.common.labs_root.empty() ? defaultLabsRoot() : args.common.labs_root;
+    std::vector<std::string> ids = args.common.labs.empty() ? listLabIds(labs_root) : args.common.labs;
+    if (ids.empty()) {
+        std::cerr << "shaderlab: no labs found in " << labs_root << "\n";
+        return 2;
+    }
+    std::error_code ec;
+    if (!fs::is_directory(args.submission, ec)) {
+        std::cerr << "shaderlab: " << args.submission << ": submission folder not found\n";
+        return 2;
+    }
+    Backend backend{};
+    parseBackend(args.common.backend, &backend);
+    ContextResult ctx = createHeadlessContext(backend);
+    if (!ctx.context) {
+        std::cerr << "shaderlab: " << ctx.error << "\n";
+        return 2;
+    }
+
+    int exit_code = 0;
+    for (const std::string& id : ids) {
+        const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / id).string());
+        if (!parsed.ok) {
+            for (const std::string& e : parsed.errors) std::cerr << e << "\n";
+            exit_code = 2;
+            continue;
+        }
+        RenderOptions options;
+        options.keep_all_passes = args.all_passes;
+        const LabRender r = renderLab(parsed.spec, (fs::path(args.submission) / id).string(), options);
+        printDiagnostics(r, id);
+        if (r.status != RenderStatus::Ok) {
+            std::cerr << id << ": " << renderStatusName(r.status) << ": " << r.message << "\n";
+            exit_code = std::max(exit_code, 1);
+            continue;
+        }
+        const fs::path lab_out = fs::path(args.out_dir) / id;
+        fs::create_directories(lab_out, ec);
+        for (const SceneRender& scene : r.scenes) {
+            for (std::size_t i = 0; i < scene.passes.size(); ++i) {
+                const PassImage& p = scene.passes[i];
+                const bool final_image = i + 1 == scene.passes.size();
+                const fs::path file = lab_out / (final_image ? scene.scene + ".png" : scene.scene + "." + p.pass + ".png");
+                std::string err;
+                if (!grader::writePng(p.color, file.string(), &err)) {
+                    std::cerr << "shaderlab: " << err << "\n";
+                    exit_code = 2;
+                    continue;
+                }
+                if (final_image) std::cout << file.string() << "  (" << scene.render_ms << " ms)\n";
+            }
+        }
+    }
+    return exit_code;
+}
+
+}  // namespace shaderlab::cli

@@ -1,0 +1,48 @@
+// A current OpenGL context, whatever made it. Headless backends (OSMesa, EGL surfaceless) live
+// here; a window host (GLFW) implements the same interface in its own glue, so the renderer
+// never knows which one it runs on. A context does not own a default framebuffer worth drawing
+// to: every pass renders into framebuffer objects.
+#pragma once
+
+#include <memory>
+#include <string>
+
+namespace shaderlab {
+
+enum class Backend { OSMesa, Egl };
+
+// "osmesa" / "egl" (what --backend takes).
+bool parseBackend(const std::string& name, Backend* out);
+const char* backendName(Backend backend);
+
+struct GlInfo {
+    int major = 0, minor = 0;
+    std::string vendor, renderer, version;
+};
+
+class GlContext {
+public:
+    virtual ~GlContext() = default;
+    virtual const char* backend() const = 0;
+    const GlInfo& info() const { return info_; }
+
+protected:
+    GlInfo info_;
+};
+
+struct ContextResult {
+    std::unique_ptr<GlContext> context;  // current on this thread when set
+    std::string error;
+};
+
+// Creates a headless OpenGL core context of at least 3.3, makes it current and loads the GL
+// entry points. A context that is too old is an error naming the version found.
+ContextResult createHeadlessContext(Backend backend);
+
+// Loads GL entry points through `get_proc` into the loader and checks the version (>= 3.3
+// core); for window hosts, whose toolkit supplies get_proc (glfwGetProcAddress has this shape).
+using GlProc = void (*)();
+using GetProcFn = GlProc (*)(const char*);
+bool loadGl(GetProcFn get_proc, GlInfo* info, std::string* error);
+
+}  // namespace shaderlab

@@ -1,0 +1,39 @@
+// The one path resolver. Lab files (lab.json, scenes, textures) are resolved against the labs
+// root; student files against the submission folder. Nothing is resolved against the working
+// directory, and a student file may not leave its folder: an absolute path, a ".." that climbs
+// out, or a symlink whose target lies outside is refused (student code is untrusted).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace shaderlab {
+
+struct PathResult {
+    bool ok = false;
+    std::string path;   // absolute, canonical when ok
+    std::string error;  // "<root>/<relative>: <problem>" when !ok
+};
+
+// Resolves `relative` inside `root`. The file must exist and be a regular file whose canonical
+// path lies inside canonical(root).
+PathResult resolveInside(const std::string& root, const std::string& relative);
+
+// Reads a whole file resolved with resolveInside, refusing files larger than `max_bytes`.
+struct FileText {
+    bool ok = false;
+    std::string text;
+    std::string path;
+    std::string error;
+};
+FileText readFileInside(const std::string& root, const std::string& relative,
+                        std::size_t max_bytes = 1u << 20);
+
+// Reads any file by path (trusted inputs: lab files chosen by the instructor).
+FileText readFile(const std::string& path, std::size_t max_bytes = 256u << 20);
+
+// The labs folder the tools use by default: $SHADERLAB_LABS when set, else the source tree's
+// labs/ recorded at configure time.
+std::string defaultLabsRoot();
+
+}  // namespace shaderlab
