@@ -29,6 +29,10 @@ public:
         if (ctx_) OSMesaDestroyContext(ctx_);
     }
     const char* backend() const override { return "osmesa"; }
+    bool makeCurrent() override {
+        return OSMesaMakeCurrent(ctx_, pixel_, GL_UNSIGNED_BYTE, 1, 1) &&
+               gladLoadGL(reinterpret_cast<GLADloadfunc>(&OSMesaGetProcAddress));
+    }
 
     bool create(std::string* error) {
         // Ask for the highest core versions first: OSMesa returns a context of at least the
@@ -78,6 +82,10 @@ public:
         }
     }
     const char* backend() const override { return "egl"; }
+    bool makeCurrent() override {
+        return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_) &&
+               gladLoadGL(reinterpret_cast<GLADloadfunc>(&eglGetProcAddress));
+    }
 
     bool create(std::string* error) {
         const char* client_ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);

@@ -24,6 +24,9 @@ class GlContext {
 public:
     virtual ~GlContext() = default;
     virtual const char* backend() const = 0;
+    // Makes this context current on the calling thread and points the GL loader at it again
+    // (entry points may differ between backends living in one process).
+    virtual bool makeCurrent() = 0;
     const GlInfo& info() const { return info_; }
 
 protected:

@@ -1,0 +1,128 @@
+// Compile logs become diagnostics that point at the student's own file and line, whatever the
+// framework injected before it.
+#include "gl_test_support.h"
+#include "shaderlab/shader_program.h"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using shaderlab::Backend;
+
+constexpr const char* kVertex =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_position;\n"
+    "void main() { gl_Position = vec4(a_position, 1.0); }\n";
+
+class ShaderProgramTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        std::string err;
+        if (!shaderlab::testing::sharedContext(Backend::OSMesa, &err)) FAIL() << err;
+    }
+};
+
+TEST(PrepareSource, KeepsVersionAndMapsLines) {
+    const auto p = shaderlab::prepareSource("// header comment\n#version 410 core\nvoid main() {}\n", "#define X 1\n");
+    EXPECT_EQ(p.text.rfind("// header comment\n#version 410 core\n#define X 1\n#line 3 0\nvoid main", 0), 0u)
+        << p.text;
+    EXPECT_EQ(p.first_student_line, 3);
+}
+
+TEST(PrepareSource, AddsVersionWhenMissing) {
+    const auto p = shaderlab::prepareSource("void main() {}\n", "");
+    EXPECT_EQ(p.text, "#version 330 core\n#line 1 0\nvoid main() {}\n");
+}
+
+TEST(PrepareSource, IgnoresVersionAfterCode) {
+    const auto p = shaderlab::prepareSource("/* a\n b */ float x;\n#version 330\n", "");
+    EXPECT_EQ(p.text.rfind("#version 330 core\n#line 1 0\n", 0), 0u) << p.text;
+}
+
+TEST(ParseInfoLog, UnderstandsCommonDriverFormats) {
+    const auto mesa = shaderlab::parseInfoLog("0:12(5): error: `foo' undeclared\n", "a.frag");
+    ASSERT_EQ(mesa.size(), 1u);
+    EXPECT_EQ(mesa[0].line, 12);
+    EXPECT_EQ(mesa[0].column, 5);
+    EXPECT_EQ(mesa[0].severity, "error");
+    EXPECT_EQ(mesa[0].file, "a.frag");
+    const auto nv = shaderlab::parseInfoLog("0(7) : warning C7050: \"x\" might be used before set\n", "a.frag");
+    ASSERT_EQ(nv.size(), 1u);
+    EXPECT_EQ(nv[0].line, 7);
+    EXPECT_EQ(nv[0].severity, "warning");
+    const auto khr = shaderlab::parseInfoLog("ERROR: 0:3: 'y' : undeclared identifier\n", "b.vert");
+    ASSERT_EQ(khr.size(), 1u);
+    EXPECT_EQ(khr[0].line, 3);
+    const auto other = shaderlab::parseInfoLog("something odd happened\n", "b.vert");
+    ASSERT_EQ(other.size(), 1u);
+    EXPECT_EQ(other[0].line, 0);
+    EXPECT_EQ(other[0].message, "something odd happened");
+}
+
+// The error is on line 6 of the student's file; the prelude adds lines before it.
+TEST_F(ShaderProgramTest, CompileErrorPointsAtStudentLine) {
+    const std::string frag =
+        "#version 330 core\n"          // 1
+        "out vec4 o_color;\n"          // 2
+        "uniform float u_gain;\n"      // 3
+        "void main() {\n"              // 4
+        "    float x = u_gain;\n"      // 5
+        "    o_color = vec4(y, 1.0);\n"  // 6: y is undeclared
+        "}\n";
+    shaderlab::ShaderProgram p;
+    EXPECT_FALSE(p.build("tri.vert", kVertex, "tri.frag", frag));
+    EXPECT_FALSE(p.compiled());
+    ASSERT_FALSE(p.diagnostics().empty());
+    bool found = false;
+    for (const auto& d : p.diagnostics()) {
+        if (d.severity == "error" && d.line == 6 && d.file == "tri.frag") found = true;
+    }
+    EXPECT_TRUE(found) << p.stages().back().info_log;
+}
+
+TEST_F(ShaderProgramTest, CompileErrorWithoutVersionLine) {
+    const std::string frag =
+        "out vec4 o_color;\n"
+        "void main() {\n"
+        "    o_color = vec4(1.0) * undefined_thing;\n"  // line 3
+        "}\n";
+    shaderlab::ShaderProgram p;
+    EXPECT_FALSE(p.build("tri.vert", kVertex, "tri.frag", frag));
+    ASSERT_FALSE(p.diagnostics().empty());
+    EXPECT_EQ(p.diagnostics().front().line, 3) << p.stages().back().info_log;
+}
+
+TEST_F(ShaderProgramTest, LinkErrorIsReportedAsLinkError) {
+    // The stages disagree on the type of a varying: each compiles, the pair does not link.
+    const std::string vert =
+        "#version 330 core\n"
+        "layout(location = 0) in vec3 a_position;\n"
+        "out vec3 v_value;\n"
+        "void main() { v_value = a_position; gl_Position = vec4(a_position, 1.0); }\n";
+    const std::string frag =
+        "#version 330 core\n"
+        "in vec4 v_value;\n"
+        "out vec4 o_color;\n"
+        "void main() { o_color = v_value; }\n";
+    shaderlab::ShaderProgram p;
+    EXPECT_FALSE(p.build("tri.vert", vert, "tri.frag", frag));
+    EXPECT_TRUE(p.compiled());
+    EXPECT_FALSE(p.linked());
+    EXPECT_FALSE(p.linkLog().empty());
+}
+
+TEST_F(ShaderProgramTest, UniformTypeMismatchIsReported) {
+    const std::string frag =
+        "#version 330 core\n"
+        "uniform int u_levels;\n"
+        "out vec4 o_color;\n"
+        "void main() { o_color = vec4(float(u_levels)); }\n";
+    shaderlab::ShaderProgram p;
+    ASSERT_TRUE(p.build("tri.vert", kVertex, "tri.frag", frag)) << p.linkLog();
+    EXPECT_EQ(p.set("u_levels", shaderlab::UniformValue(3)), "");
+    const std::string msg = p.set("u_levels", shaderlab::UniformValue(glm::vec3(1.0f)));
+    EXPECT_NE(msg.find("declared int"), std::string::npos) << msg;
+    EXPECT_EQ(p.set("u_not_there", shaderlab::UniformValue(1.0f)), "");
+}
+
+}  // namespace
