@@ -24,4 +24,38 @@ int runRender(const RenderArgs& args);
 
 int runInfo(const std::string& backend);
 
+struct GradeArgs {
+    CommonOptions common;
+    std::string submission;
+    std::string out_dir;
+    std::string reference_root;  // empty: <labs>/../reference_solutions when it exists
+    bool no_reference = false;   // grade against the stored goldens even when references exist
+    std::vector<std::string> formats;  // json (always), gradescope, junit
+    double timeout_s = 60.0;
+};
+int runGrade(const GradeArgs& args);
+
+struct CheckArgs {
+    CommonOptions common;
+    std::string lab;
+    std::string submission;  // empty: the labs folder itself (the student's working copy)
+    std::string out_dir;     // empty: out/check beside the labs folder
+    bool no_reference = false;
+    double timeout_s = 60.0;
+};
+int runCheck(const CheckArgs& args);
+
+struct CompareArgs {
+    std::string a, b;
+    bool json = false;
+    float tolerance = 0.05f;
+};
+int runCompare(const CompareArgs& args);
+
+struct GoldensArgs {
+    CommonOptions common;
+    std::string reference_root;  // empty: <labs>/../reference_solutions
+};
+int runGoldens(const GoldensArgs& args);
+
 }  // namespace shaderlab::cli

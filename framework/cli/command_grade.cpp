@@ -1,0 +1,228 @@
+// `shaderlab grade`, `check`, `compare` and `goldens`.
+#include "commands.h"
+
+#include "grader/report.h"
+#include "grader/scoring.h"
+#include "shaderlab/grading.h"
+#include "shaderlab/paths.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace shaderlab::cli {
+
+namespace {
+
+std::string labsRootOf(const CommonOptions& c) { return c.labs_root.empty() ? defaultLabsRoot() : c.labs_root; }
+
+std::string defaultReferenceRoot(const std::string& labs_root) {
+    const fs::path p = fs::path(labs_root).parent_path() / "reference_solutions";
+    std::error_code ec;
+    return fs::is_directory(p, ec) ? p.string() : std::string();
+}
+
+bool writeText(const fs::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    return static_cast<bool>(out);
+}
+
+struct Palette {
+    const char* green = "";
+    const char* red = "";
+    const char* bold = "";
+    const char* reset = "";
+};
+
+Palette palette() {
+    Palette p;
+    const char* no_color = std::getenv("NO_COLOR");
+    if (isatty(STDOUT_FILENO) && !(no_color && *no_color)) {
+        p.green = "\033[32m";
+        p.red = "\033[31m";
+        p.bold = "\033[1m";
+        p.reset = "\033[0m";
+    }
+    return p;
+}
+
+std::string formatPsnr(double v) {
+    if (std::isinf(v)) return "identical";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f dB", v);
+    return buf;
+}
+
+void printLab(const grader::ReportLab& lab, bool verbose) {
+    const Palette c = palette();
+    const bool ok = lab.status == "passed";
+    std::printf("%s%s%-8s%s %s  %.2f / %.2f", c.bold, ok ? c.green : c.red, ok ? "PASS" : "FAIL", c.reset,
+                lab.id.c_str(), lab.score, lab.max_score);
+    if (!ok) std::printf("  (%s)", lab.status.c_str());
+    std::printf("\n");
+    if (!lab.message.empty()) std::printf("    %s\n", lab.message.c_str());
+    for (const grader::ReportDiagnostic& d : lab.diagnostics) {
+        std::printf("    %s/%s", lab.id.c_str(), d.file.c_str());
+        if (d.line > 0) std::printf(":%d", d.line);
+        if (d.column > 0) std::printf(":%d", d.column);
+        std::printf(": %s: %s\n", d.severity.c_str(), d.message.c_str());
+    }
+    if (!verbose) return;
+    for (const grader::ReportScene& s : lab.scenes) {
+        const bool pass = s.status == "passed";
+        std::printf("  %s%-4s%s %-28s PSNR %-10s SSIM %.4f  FLIP %.4f  mismatch %5.2f%%\n", pass ? c.green : c.red,
+                    pass ? "ok" : "FAIL", c.reset, s.name.c_str(), formatPsnr(s.metrics.psnr_db).c_str(),
+                    s.metrics.ssim, s.metrics.flip_mean, 100.0 * s.metrics.mismatch_fraction);
+        if (!pass && !s.message.empty()) std::printf("       %s\n", s.message.c_str());
+    }
+}
+
+}  // namespace
+
+int runGrade(const GradeArgs& args) {
+    std::error_code ec;
+    if (!fs::is_directory(args.submission, ec)) {
+        std::cerr << "shaderlab: " << args.submission << ": submission folder not found\n";
+        return 2;
+    }
+    GradeOptions options;
+    parseBackend(args.common.backend, &options.backend);
+    options.labs_root = labsRootOf(args.common);
+    options.labs = args.common.labs;
+    options.out_dir = args.out_dir;
+    options.limits.timeout_s = args.timeout_s;
+    if (!args.no_reference)
+        options.reference_root = args.reference_root.empty() ? defaultReferenceRoot(options.labs_root) : args.reference_root;
+    fs::create_directories(args.out_dir, ec);
+    if (ec) {
+        std::cerr << "shaderlab: " << args.out_dir << ": cannot create the output folder: " << ec.message() << "\n";
+        return 2;
+    }
+
+    const fs::path out = args.out_dir;
+    grader::Report report;
+    report.tool_version = SHADERLAB_VERSION;
+    // The report is rewritten after every lab, so an interrupted run keeps what it finished.
+    auto write_all = [&](const grader::Report& r) {
+        bool ok = writeText(out / "report.json", grader::reportToJson(r));
+        ok = writeText(out / "report.html", grader::reportToHtml(r)) && ok;
+        for (const std::string& f : args.formats) {
+            if (f == "gradescope") ok = writeText(out / "results.json", grader::reportToGradescope(r)) && ok;
+            if (f == "junit") ok = writeText(out / "report.junit.xml", grader::reportToJunit(r)) && ok;
+        }
+        return ok;
+    };
+    grader::Report partial;
+    partial.tool_version = SHADERLAB_VERSION;
+    partial.submission = args.submission;
+    partial.backend = args.common.backend;
+    report = gradeSubmission(args.submission, options, [&](const grader::ReportLab& lab) {
+        printLab(lab, false);
+        partial.labs.push_back(lab);
+        partial.score += lab.score;
+        partial.max_score += lab.max_score;
+        write_all(partial);
+    });
+    report.tool_version = SHADERLAB_VERSION;
+    if (!write_all(report)) {
+        std::cerr << "shaderlab: cannot write the report into " << out.string() << "\n";
+        return 2;
+    }
+    std::printf("score %.2f / %.2f\nreport: %s\n", report.score, report.max_score,
+                fs::absolute(out / "report.json").string().c_str());
+    std::printf("        %s\n", fs::absolute(out / "report.html").string().c_str());
+    return 0;
+}
+
+int runCheck(const CheckArgs& args) {
+    GradeOptions options;
+    parseBackend(args.common.backend, &options.backend);
+    options.labs_root = labsRootOf(args.common);
+    options.labs = {args.lab};
+    options.limits.timeout_s = args.timeout_s;
+    if (!args.no_reference) options.reference_root = defaultReferenceRoot(options.labs_root);
+    std::error_code ec;
+    if (!fs::is_regular_file(fs::path(options.labs_root) / args.lab / "lab.json", ec)) {
+        std::cerr << "shaderlab: no lab '" << args.lab << "' in " << options.labs_root << "\n";
+        return 2;
+    }
+    const std::string submission = args.submission.empty() ? options.labs_root : args.submission;
+    options.out_dir = args.out_dir.empty() ? (fs::path(options.labs_root).parent_path() / "out" / "check").string()
+                                           : args.out_dir;
+    fs::create_directories(options.out_dir, ec);
+    const grader::Report report = gradeSubmission(submission, options);
+    grader::Report with_version = report;
+    with_version.tool_version = SHADERLAB_VERSION;
+    writeText(fs::path(options.out_dir) / "report.json", grader::reportToJson(with_version));
+    writeText(fs::path(options.out_dir) / "report.html", grader::reportToHtml(with_version));
+    bool all_passed = !report.labs.empty();
+    for (const grader::ReportLab& lab : report.labs) {
+        printLab(lab, true);
+        all_passed = all_passed && lab.status == "passed";
+    }
+    std::printf("images and report: %s\n", fs::absolute(fs::path(options.out_dir) / "report.html").string().c_str());
+    return all_passed ? 0 : 1;
+}
+
+int runCompare(const CompareArgs& args) {
+    grader::Image a, b;
+    std::string err;
+    if (!grader::readPng(args.a, &a, &err) || !grader::readPng(args.b, &b, &err)) {
+        std::cerr << "shaderlab: " << err << "\n";
+        return 2;
+    }
+    if (a.width != b.width || a.height != b.height) {
+        std::cerr << "shaderlab: " << args.a << " is " << a.width << "x" << a.height << " but " << args.b << " is "
+                  << b.width << "x" << b.height << "\n";
+        return 2;
+    }
+    grader::Thresholds t;
+    t.pixel_tolerance = args.tolerance;
+    const grader::ImageVerdict v = grader::judgeImage(a, {}, b, {}, t);
+    const grader::MetricSet& m = v.frame;
+    if (args.json) {
+        nlohmann::ordered_json j = {
+            {"reference", args.a},
+            {"test", args.b},
+            {"width", a.width},
+            {"height", a.height},
+            {"psnr_db", std::isfinite(m.psnr_db) ? nlohmann::ordered_json(m.psnr_db) : nlohmann::ordered_json()},
+            {"identical", std::isinf(m.psnr_db)},
+            {"ssim", m.ssim},
+            {"flip_mean", m.flip_mean},
+            {"flip_weighted_median", m.flip_weighted_median},
+            {"mismatch_fraction", m.mismatch_fraction},
+            {"pixel_tolerance", args.tolerance},
+            {"nan_count", v.nan_count}};
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::printf("PSNR      %s\nSSIM      %.6f\nFLIP mean %.6f\nmismatch  %.4f%% (tolerance %.3f, 1-pixel shift allowed)\n",
+                    formatPsnr(m.psnr_db).c_str(), m.ssim, m.flip_mean, 100.0 * m.mismatch_fraction, args.tolerance);
+    }
+    return 0;
+}
+
+int runGoldens(const GoldensArgs& args) {
+    const std::string labs_root = labsRootOf(args.common);
+    const std::string reference_root = args.reference_root.empty()
+                                           ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
+                                           : args.reference_root;
+    Backend backend{};
+    parseBackend(args.common.backend, &backend);
+    const std::vector<std::string> errors = writeGoldens(reference_root, labs_root, args.common.labs, backend);
+    for (const std::string& e : errors) std::cerr << "shaderlab: " << e << "\n";
+    if (errors.empty()) std::printf("goldens written under %s/*/golden/\n", labs_root.c_str());
+    return errors.empty() ? 0 : 2;
+}
+
+}  // namespace shaderlab::cli

@@ -1,0 +1,44 @@
+// Grades a submission: for each lab, renders the student's shaders in a child process, gets the
+// reference images (by rendering the reference solution when it is present, else from the
+// lab's stored goldens), judges every graded pass with the lab's thresholds and writes the
+// images a person needs to see why (student, reference, diff heat map). Returns the report as
+// data; writing report files is the caller's (see grader/report.h).
+#pragma once
+
+#include "grader/report.h"
+#include "shaderlab/gl_context.h"
+#include "shaderlab/isolated_render.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace shaderlab {
+
+struct GradeOptions {
+    Backend backend = Backend::OSMesa;
+    std::string labs_root;       // where lab.json files live
+    std::string reference_root;  // folder mirroring labs/ with reference shaders; empty or absent: goldens
+    std::vector<std::string> labs;  // empty: every lab under labs_root
+    std::string out_dir;         // images go to out_dir/<lab>/<scene>/
+    IsolationLimits limits;
+};
+
+// Called after each lab is graded (for progress output); may be empty.
+using LabCallback = std::function<void(const grader::ReportLab&)>;
+
+grader::Report gradeSubmission(const std::string& submission_dir, const GradeOptions& options,
+                               const LabCallback& on_lab = {});
+
+// Where a lab's golden image lives: <lab_dir>/golden/<scene>.png for the final image,
+// <scene>.<pass>.png for an intermediate graded pass, and ".coverage.png" instead of ".png"
+// for the coverage mask.
+std::string goldenPath(const std::string& lab_dir, const std::string& scene, const std::string& pass,
+                       bool final_image, bool coverage);
+
+// Renders the reference solution of each lab and writes its goldens. Returns error messages.
+std::vector<std::string> writeGoldens(const std::string& reference_root, const std::string& labs_root,
+                                      const std::vector<std::string>& labs, Backend backend,
+                                      const std::string& golden_root_override = "");
+
+}  // namespace shaderlab

@@ -1,0 +1,222 @@
+// Child-process rendering; see isolated_render.h.
+#include "shaderlab/isolated_render.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace shaderlab {
+
+namespace {
+
+bool writeBytes(const fs::path& p, const void* data, std::size_t n) {
+    std::ofstream out(p, std::ios::binary);
+    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(n));
+    return static_cast<bool>(out);
+}
+
+bool readBytes(const fs::path& p, void* data, std::size_t n) {
+    std::error_code ec;
+    if (fs::file_size(p, ec) != n || ec) return false;
+    std::ifstream in(p, std::ios::binary);
+    in.read(static_cast<char*>(data), static_cast<std::streamsize>(n));
+    return static_cast<bool>(in);
+}
+
+// Child side: render, then write result.json and one raw file per image. Never returns.
+[[noreturn]] void childMain(const LabSpec& spec, const std::string& shader_dir, Backend backend,
+                            const IsolationLimits& limits, const RenderOptions& options, const fs::path& dir) {
+    rlimit as{};
+    as.rlim_cur = as.rlim_max = limits.memory_bytes;
+    setrlimit(RLIMIT_AS, &as);
+    rlimit core{};  // a crashing driver should not litter core files
+    setrlimit(RLIMIT_CORE, &core);
+
+    json result;
+    ContextResult ctx = createHeadlessContext(backend);
+    if (!ctx.context) {
+        result["status"] = "render_error";
+        result["message"] = ctx.error;
+    } else {
+        const LabRender r = renderLab(spec, shader_dir, options);
+        result["status"] = renderStatusName(r.status);
+        result["message"] = r.message;
+        json diags = json::array();
+        for (const Diagnostic& d : r.diagnostics)
+            diags.push_back({{"file", d.file}, {"line", d.line}, {"column", d.column},
+                             {"severity", d.severity}, {"message", d.message}});
+        result["diagnostics"] = diags;
+        json scenes = json::array();
+        int n = 0;
+        for (const SceneRender& s : r.scenes) {
+            json passes = json::array();
+            for (const PassImage& p : s.passes) {
+                const std::string stem = "img" + std::to_string(n++);
+                writeBytes(dir / (stem + ".rgba"), p.color.pixels.data(), p.color.pixels.size() * sizeof(float));
+                writeBytes(dir / (stem + ".cov"), p.coverage.data(), p.coverage.size());
+                passes.push_back({{"pass", p.pass}, {"target", p.target}, {"graded", p.graded},
+                                  {"width", p.color.width}, {"height", p.color.height}, {"file", stem}});
+            }
+            scenes.push_back({{"scene", s.scene}, {"render_ms", s.render_ms}, {"passes", passes}});
+        }
+        result["scenes"] = scenes;
+    }
+    const std::string text = result.dump();
+    writeBytes(dir / "result.json.tmp", text.data(), text.size());
+    std::error_code ec;
+    fs::rename(dir / "result.json.tmp", dir / "result.json", ec);
+    // _exit: skip atexit handlers and static destructors of the copied parent state.
+    std::fflush(nullptr);
+    _exit(0);
+}
+
+IsolatedStatus statusFromName(const std::string& s) {
+    if (s == "ok") return IsolatedStatus::Ok;
+    if (s == "missing") return IsolatedStatus::Missing;
+    if (s == "compile_error") return IsolatedStatus::CompileError;
+    if (s == "link_error") return IsolatedStatus::LinkError;
+    return IsolatedStatus::RenderError;
+}
+
+RenderStatus renderStatusOf(IsolatedStatus s) {
+    switch (s) {
+        case IsolatedStatus::Ok: return RenderStatus::Ok;
+        case IsolatedStatus::Missing: return RenderStatus::Missing;
+        case IsolatedStatus::CompileError: return RenderStatus::CompileError;
+        case IsolatedStatus::LinkError: return RenderStatus::LinkError;
+        default: return RenderStatus::RenderError;
+    }
+}
+
+// Parent side: read what the child wrote, trusting nothing about sizes.
+bool readChildResult(const fs::path& dir, IsolatedRender* out) {
+    std::ifstream in(dir / "result.json");
+    if (!in) return false;
+    json result = json::parse(in, nullptr, false);
+    if (result.is_discarded() || !result.is_object()) return false;
+    out->status = statusFromName(result.value("status", ""));
+    out->message = result.value("message", "");
+    out->render.status = renderStatusOf(out->status);
+    out->render.message = out->message;
+    for (const json& d : result.value("diagnostics", json::array())) {
+        out->render.diagnostics.push_back({d.value("file", ""), d.value("line", 0), d.value("column", 0),
+                                           d.value("severity", ""), d.value("message", "")});
+    }
+    for (const json& s : result.value("scenes", json::array())) {
+        SceneRender scene;
+        scene.scene = s.value("scene", "");
+        scene.render_ms = s.value("render_ms", 0.0);
+        for (const json& p : s.value("passes", json::array())) {
+            PassImage img;
+            img.pass = p.value("pass", "");
+            img.target = p.value("target", "");
+            img.graded = p.value("graded", false);
+            const int w = p.value("width", 0), h = p.value("height", 0);
+            if (w <= 0 || h <= 0 || w > 8192 || h > 8192) return false;
+            img.color = grader::Image(w, h, 4);
+            img.coverage.resize(static_cast<std::size_t>(w) * h);
+            const std::string stem = p.value("file", "");
+            if (!readBytes(dir / (stem + ".rgba"), img.color.pixels.data(), img.color.pixels.size() * sizeof(float)) ||
+                !readBytes(dir / (stem + ".cov"), img.coverage.data(), img.coverage.size()))
+                return false;
+            scene.passes.push_back(std::move(img));
+        }
+        out->render.scenes.push_back(std::move(scene));
+    }
+    return true;
+}
+
+}  // namespace
+
+const char* isolatedStatusName(IsolatedStatus status) {
+    switch (status) {
+        case IsolatedStatus::Ok: return "ok";
+        case IsolatedStatus::Missing: return "missing";
+        case IsolatedStatus::CompileError: return "compile_error";
+        case IsolatedStatus::LinkError: return "link_error";
+        case IsolatedStatus::RenderError: return "render_error";
+        case IsolatedStatus::Timeout: return "timeout";
+        default: return "crashed";
+    }
+}
+
+IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_dir, Backend backend,
+                                 const IsolationLimits& limits, const RenderOptions& options) {
+    IsolatedRender out;
+    char tmpl[] = "/tmp/shaderlab-render-XXXXXX";
+    if (!mkdtemp(tmpl)) {
+        out.status = IsolatedStatus::RenderError;
+        out.message = std::string("cannot create a temporary folder: ") + std::strerror(errno);
+        return out;
+    }
+    const fs::path dir = tmpl;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::fflush(nullptr);  // buffered output would otherwise be written twice
+    const pid_t pid = fork();
+    if (pid < 0) {
+        out.status = IsolatedStatus::RenderError;
+        out.message = std::string("fork failed: ") + std::strerror(errno);
+        fs::remove_all(dir);
+        return out;
+    }
+    if (pid == 0) childMain(spec, shader_dir, backend, limits, options, dir);
+
+    int wstatus = 0;
+    bool finished = false;
+    // Poll rather than block: the parent must be able to give up on a child that never ends.
+    while (true) {
+        const pid_t r = waitpid(pid, &wstatus, WNOHANG);
+        if (r == pid) {
+            finished = true;
+            break;
+        }
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (elapsed > limits.timeout_s) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(elapsed < 1.0 ? 2 : 20));
+    }
+    out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!finished) {
+        kill(pid, SIGKILL);
+        waitpid(pid, &wstatus, 0);
+        out.status = IsolatedStatus::Timeout;
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.0f", limits.timeout_s);
+        out.message = "rendering did not finish within " + std::string(buf) +
+                      " s (an endless loop in a shader?); the process was killed";
+    } else if (WIFSIGNALED(wstatus)) {
+        out.status = IsolatedStatus::Crashed;
+        const int sig = WTERMSIG(wstatus);
+        out.message = std::string("the render process died of signal ") + std::to_string(sig) + " (" +
+                      strsignal(sig) + ")";
+        if (sig == SIGKILL || sig == SIGSEGV || sig == SIGABRT)
+            out.message += "; the shader may have crashed the driver or exceeded the memory limit";
+    } else if (!readChildResult(dir, &out)) {
+        out.status = IsolatedStatus::Crashed;
+        out.message = "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) +
+                      ") without a readable result; out of memory?";
+    }
+    if (out.status == IsolatedStatus::Timeout || out.status == IsolatedStatus::Crashed) {
+        out.render.status = RenderStatus::RenderError;
+        out.render.message = out.message;
+    }
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    return out;
+}
+
+}  // namespace shaderlab

@@ -1,0 +1,88 @@
+// The grading report as data, and its writers: report.json (docs/report-format.md), Gradescope's
+// results.json, JUnit XML and a self-contained report.html. Writers only format; they do not
+// grade. Image paths in the report are relative to the report's folder.
+#pragma once
+
+#include "grader/mask.h"
+
+#include <string>
+#include <vector>
+
+namespace grader {
+
+constexpr int kReportSchemaVersion = 1;
+
+// The closed set of lab and scene statuses.
+//   passed, failed: rendered and judged; compile_error, link_error: the shaders did not build;
+//   timeout, crashed: the render process was stopped or died; missing: a student file is absent.
+// render_error (a GL error or a broken scene file) is reported as "crashed" with its message.
+struct ReportDiagnostic {
+    std::string file;
+    int line = 0;
+    int column = 0;
+    std::string severity;
+    std::string message;
+};
+
+struct ReportMetrics {
+    double psnr_db = 0.0;  // +infinity allowed; written as null with "identical": true
+    double ssim = 0.0;
+    double flip_mean = 0.0;
+    double flip_weighted_median = 0.0;
+    double mismatch_fraction = 0.0;
+    std::size_t nan_count = 0;
+    std::size_t inf_count = 0;
+    std::size_t pixel_count = 0;
+};
+
+struct ReportPass {
+    std::string name;
+    bool passed = false;
+    ReportMetrics metrics;
+    std::vector<std::string> reasons;
+    std::string student_image, reference_image, diff_image;
+};
+
+struct ReportScene {
+    std::string name;
+    std::string status;  // passed | failed
+    double score = 0.0, max_score = 0.0;
+    std::string message;             // the reasons, joined
+    std::string first_failing_pass;  // empty when every graded pass passed
+    ReportMetrics metrics;           // of the final image, over covered pixels
+    ReportMetrics frame_metrics;     // of the final image, whole frame
+    PixelBox worst_region;
+    PixelBox non_finite_box;
+    std::string student_image, reference_image, diff_image;
+    std::vector<ReportPass> passes;  // every graded pass, in order (the last is the final image)
+    double render_ms = 0.0;
+};
+
+struct ReportLab {
+    std::string id, title;
+    std::string status;  // one of the closed set above
+    double score = 0.0, max_score = 0.0;
+    std::string message;
+    std::string reference_source;  // "reference_solutions" or "goldens"
+    std::vector<ReportDiagnostic> diagnostics;
+    std::vector<ReportScene> scenes;
+    double wall_ms = 0.0;
+};
+
+struct Report {
+    std::string tool_version;
+    std::string submission;
+    std::string backend;
+    std::string renderer;  // the GL renderer string, when known
+    std::vector<ReportLab> labs;
+    double score = 0.0, max_score = 0.0;
+};
+
+// Each returns the text; the caller writes files.
+std::string reportToJson(const Report& report);
+bool reportFromJson(const std::string& text, Report* out, std::string* error);
+std::string reportToGradescope(const Report& report);
+std::string reportToJunit(const Report& report);
+std::string reportToHtml(const Report& report);
+
+}  // namespace grader

@@ -1,0 +1,227 @@
+// report.json and Gradescope results.json; see report.h and docs/report-format.md.
+#include "grader/report.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace grader {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// JSON has no infinity, and nlohmann writes NaN/Inf as null without a word, so every double
+// passes through here: +inf PSNR becomes null (paired with "identical": true); any other
+// non-finite value is a bug upstream and is written as null too, never as a misleading number.
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+double fromNumber(const json& j, double if_null) { return j.is_number() ? j.get<double>() : if_null; }
+
+json box(const PixelBox& b) {
+    if (b.empty()) return nullptr;
+    return {{"x0", b.x0}, {"y0", b.y0}, {"x1", b.x1}, {"y1", b.y1}};
+}
+
+PixelBox boxFrom(const json& j) {
+    PixelBox b;
+    if (j.is_object()) {
+        b.x0 = j.value("x0", 0);
+        b.y0 = j.value("y0", 0);
+        b.x1 = j.value("x1", -1);
+        b.y1 = j.value("y1", -1);
+    }
+    return b;
+}
+
+json metrics(const ReportMetrics& m) {
+    return {{"psnr_db", number(m.psnr_db)},
+            {"identical", std::isinf(m.psnr_db) && m.psnr_db > 0},
+            {"ssim", number(m.ssim)},
+            {"flip_mean", number(m.flip_mean)},
+            {"flip_weighted_median", number(m.flip_weighted_median)},
+            {"mismatch_fraction", number(m.mismatch_fraction)},
+            {"nan_count", m.nan_count},
+            {"inf_count", m.inf_count},
+            {"pixel_count", m.pixel_count}};
+}
+
+ReportMetrics metricsFrom(const json& j) {
+    ReportMetrics m;
+    if (!j.is_object()) return m;
+    const bool identical = j.value("identical", false);
+    m.psnr_db = fromNumber(j.value("psnr_db", json()), identical ? std::numeric_limits<double>::infinity() : 0.0);
+    m.ssim = fromNumber(j.value("ssim", json()), 0.0);
+    m.flip_mean = fromNumber(j.value("flip_mean", json()), 0.0);
+    m.flip_weighted_median = fromNumber(j.value("flip_weighted_median", json()), 0.0);
+    m.mismatch_fraction = fromNumber(j.value("mismatch_fraction", json()), 0.0);
+    m.nan_count = j.value("nan_count", std::size_t{0});
+    m.inf_count = j.value("inf_count", std::size_t{0});
+    m.pixel_count = j.value("pixel_count", std::size_t{0});
+    return m;
+}
+
+json images(const std::string& student, const std::string& reference, const std::string& diff) {
+    return {{"student", student}, {"reference", reference}, {"diff", diff}};
+}
+
+}  // namespace
+
+std::string reportToJson(const Report& report) {
+    json labs = json::array();
+    for (const ReportLab& lab : report.labs) {
+        json diags = json::array();
+        for (const ReportDiagnostic& d : lab.diagnostics)
+            diags.push_back({{"file", d.file}, {"line", d.line}, {"column", d.column},
+                             {"severity", d.severity}, {"message", d.message}});
+        json scenes = json::array();
+        for (const ReportScene& s : lab.scenes) {
+            json passes = json::array();
+            for (const ReportPass& p : s.passes)
+                passes.push_back({{"name", p.name},
+                                  {"passed", p.passed},
+                                  {"reasons", p.reasons},
+                                  {"metrics", metrics(p.metrics)},
+                                  {"images", images(p.student_image, p.reference_image, p.diff_image)}});
+            scenes.push_back({{"name", s.name},
+                              {"status", s.status},
+                              {"score", number(s.score)},
+                              {"max_score", number(s.max_score)},
+                              {"message", s.message},
+                              {"first_failing_pass", s.first_failing_pass.empty() ? json(nullptr) : json(s.first_failing_pass)},
+                              {"metrics", metrics(s.metrics)},
+                              {"frame_metrics", metrics(s.frame_metrics)},
+                              {"worst_region", box(s.worst_region)},
+                              {"non_finite_region", box(s.non_finite_box)},
+                              {"images", images(s.student_image, s.reference_image, s.diff_image)},
+                              {"passes", passes},
+                              {"render_ms", number(s.render_ms)}});
+        }
+        labs.push_back({{"id", lab.id},
+                        {"title", lab.title},
+                        {"status", lab.status},
+                        {"score", number(lab.score)},
+                        {"max_score", number(lab.max_score)},
+                        {"message", lab.message},
+                        {"reference_source", lab.reference_source},
+                        {"diagnostics", diags},
+                        {"scenes", scenes},
+                        {"wall_ms", number(lab.wall_ms)}});
+    }
+    json root = {{"schema_version", kReportSchemaVersion},
+                 {"tool", "shaderlab"},
+                 {"tool_version", report.tool_version},
+                 {"submission", report.submission},
+                 {"backend", report.backend},
+                 {"renderer", report.renderer},
+                 {"score", number(report.score)},
+                 {"max_score", number(report.max_score)},
+                 {"labs", labs}};
+    return root.dump(2) + "\n";
+}
+
+bool reportFromJson(const std::string& text, Report* out, std::string* error) {
+    const json root = json::parse(text, nullptr, false);
+    if (root.is_discarded() || !root.is_object()) {
+        *error = "report is not a JSON object";
+        return false;
+    }
+    if (root.value("schema_version", 0) != kReportSchemaVersion) {
+        *error = "report schema_version " + std::to_string(root.value("schema_version", 0)) + ", expected " +
+                 std::to_string(kReportSchemaVersion);
+        return false;
+    }
+    Report r;
+    r.tool_version = root.value("tool_version", "");
+    r.submission = root.value("submission", "");
+    r.backend = root.value("backend", "");
+    r.renderer = root.value("renderer", "");
+    r.score = fromNumber(root.value("score", json()), 0.0);
+    r.max_score = fromNumber(root.value("max_score", json()), 0.0);
+    for (const json& l : root.value("labs", json::array())) {
+        ReportLab lab;
+        lab.id = l.value("id", "");
+        lab.title = l.value("title", "");
+        lab.status = l.value("status", "");
+        lab.score = fromNumber(l.value("score", json()), 0.0);
+        lab.max_score = fromNumber(l.value("max_score", json()), 0.0);
+        lab.message = l.value("message", "");
+        lab.reference_source = l.value("reference_source", "");
+        lab.wall_ms = fromNumber(l.value("wall_ms", json()), 0.0);
+        for (const json& d : l.value("diagnostics", json::array()))
+            lab.diagnostics.push_back({d.value("file", ""), d.value("line", 0), d.value("column", 0),
+                                       d.value("severity", ""), d.value("message", "")});
+        for (const json& s : l.value("scenes", json::array())) {
+            ReportScene scene;
+            scene.name = s.value("name", "");
+            scene.status = s.value("status", "");
+            scene.score = fromNumber(s.value("score", json()), 0.0);
+            scene.max_score = fromNumber(s.value("max_score", json()), 0.0);
+            scene.message = s.value("message", "");
+            const json ffp = s.value("first_failing_pass", json());
+            scene.first_failing_pass = ffp.is_string() ? ffp.get<std::string>() : "";
+            scene.metrics = metricsFrom(s.value("metrics", json()));
+            scene.frame_metrics = metricsFrom(s.value("frame_metrics", json()));
+            scene.worst_region = boxFrom(s.value("worst_region", json()));
+            scene.non_finite_box = boxFrom(s.value("non_finite_region", json()));
+            const json im = s.value("images", json::object());
+            scene.student_image = im.value("student", "");
+            scene.reference_image = im.value("reference", "");
+            scene.diff_image = im.value("diff", "");
+            scene.render_ms = fromNumber(s.value("render_ms", json()), 0.0);
+            for (const json& p : s.value("passes", json::array())) {
+                ReportPass pass;
+                pass.name = p.value("name", "");
+                pass.passed = p.value("passed", false);
+                pass.reasons = p.value("reasons", std::vector<std::string>{});
+                pass.metrics = metricsFrom(p.value("metrics", json()));
+                const json pim = p.value("images", json::object());
+                pass.student_image = pim.value("student", "");
+                pass.reference_image = pim.value("reference", "");
+                pass.diff_image = pim.value("diff", "");
+                scene.passes.push_back(std::move(pass));
+            }
+            lab.scenes.push_back(std::move(scene));
+        }
+        r.labs.push_back(std::move(lab));
+    }
+    *out = std::move(r);
+    return true;
+}
+
+// Gradescope autograder results.json: top-level score and output, one test per scene (or one
+// per lab when the lab never rendered), status "passed"/"failed", visible to the student.
+std::string reportToGradescope(const Report& report) {
+    json tests = json::array();
+    for (const ReportLab& lab : report.labs) {
+        if (lab.scenes.empty()) {
+            std::string output = lab.status + ": " + lab.message;
+            for (const ReportDiagnostic& d : lab.diagnostics)
+                output += "\n" + d.file + (d.line ? ":" + std::to_string(d.line) : "") + ": " + d.severity + ": " +
+                          d.message;
+            tests.push_back({{"name", lab.id}, {"score", number(lab.score)}, {"max_score", number(lab.max_score)},
+                             {"status", "failed"}, {"output", output}, {"visibility", "visible"}});
+            continue;
+        }
+        for (const ReportScene& s : lab.scenes) {
+            std::string output = s.status == "passed" ? "matches the reference" : s.message;
+            tests.push_back({{"name", lab.id + " / " + s.name},
+                             {"score", number(s.score)},
+                             {"max_score", number(s.max_score)},
+                             {"status", s.status == "passed" ? "passed" : "failed"},
+                             {"output", output},
+                             {"visibility", "visible"}});
+        }
+    }
+    char summary[128];
+    std::snprintf(summary, sizeof summary, "shaderlab %s: %.2f / %.2f points", report.tool_version.c_str(),
+                  report.score, report.max_score);
+    json root = {{"score", number(report.score)},
+                 {"output", summary},
+                 {"visibility", "visible"},
+                 {"tests", tests}};
+    return root.dump(2) + "\n";
+}
+
+}  // namespace grader

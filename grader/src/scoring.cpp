@@ -1,0 +1,132 @@
+// Verdicts and points; see scoring.h.
+#include "grader/scoring.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace grader {
+
+namespace {
+
+std::string fmt(const char* format, double a, double b) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, format, a, b);
+    return buf;
+}
+
+MetricSet measure(const Image& ref, const Image& test, const Mask* mask, float tolerance,
+                  ToleranceCompareResult* compare_out, FlipResult* flip_out) {
+    MetricSet m;
+    PsnrConfig pc;
+    pc.mask = mask;
+    const PsnrResult psnr = computePsnr(ref, test, pc);
+    m.psnr_db = psnr.psnr_db;
+    m.pixel_count = psnr.pixel_count;
+    SsimConfig sc;
+    sc.mask = mask;
+    m.ssim = computeSsim(ref, test, sc).ssim;
+    FlipConfig fc;
+    fc.mask = mask;
+    fc.want_map = flip_out != nullptr;
+    FlipResult flip = computeFlip(ref, test, fc);
+    m.flip_mean = flip.mean;
+    m.flip_weighted_median = flip.weighted_median;
+    ToleranceCompareConfig cc;
+    cc.mask = mask;
+    cc.tolerance = tolerance;
+    ToleranceCompareResult cmp = compareShiftTolerant(ref, test, cc);
+    m.mismatch_fraction = cmp.mismatch_fraction;
+    if (compare_out) *compare_out = std::move(cmp);
+    if (flip_out) *flip_out = std::move(flip);
+    return m;
+}
+
+}  // namespace
+
+Image quantise8(const Image& image) {
+    Image out = image;
+    for (float& v : out.pixels) {
+        float c = std::isnan(v) ? 0.0f : std::fmin(std::fmax(v, 0.0f), 1.0f);
+        v = std::round(c * 255.0f) / 255.0f;
+    }
+    return out;
+}
+
+ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>& reference_coverage,
+                        const Image& test, const std::vector<std::uint8_t>& test_coverage,
+                        const Thresholds& thresholds) {
+    ImageVerdict v;
+    if (reference.width != test.width || reference.height != test.height) {
+        v.reasons.push_back(fmt("image is %.0f pixels wide, the reference %.0f", test.width, reference.width));
+        return v;
+    }
+    const NonFiniteResult nf = scanNonFinite(test);
+    v.nan_count = nf.nan_pixels;
+    v.inf_count = nf.inf_pixels;
+    v.non_finite_box = nf.bounding_box;
+    v.non_finite_first = nf.first_positions;
+
+    const Image ref8 = quantise8(reference);
+    const Image test8 = quantise8(test);
+
+    // Covered: drawn by the reference or by the student, so a missing object and an extra one
+    // both count. When nothing is covered (a fullscreen pass, or an empty frame) the whole
+    // frame is graded.
+    const std::size_t n = static_cast<std::size_t>(test.width) * test.height;
+    Mask covered(test.width, test.height, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const bool r = reference_coverage.size() != n || reference_coverage[i];
+        const bool t = test_coverage.size() != n || test_coverage[i];
+        covered.values[i] = (r || t) ? 1 : 0;
+    }
+    v.covered_pixels = covered.count();
+    if (v.covered_pixels == 0) covered = Mask(test.width, test.height, 1);
+
+    ToleranceCompareResult cmp;
+    FlipResult flip;
+    v.covered = measure(ref8, test8, &covered, thresholds.pixel_tolerance, &cmp, &flip);
+    v.frame = measure(ref8, test8, nullptr, thresholds.pixel_tolerance, nullptr, nullptr);
+    v.worst = cmp.worst;
+    v.mismatches = std::move(cmp.mismatches);
+    v.flip_map = std::move(flip.error_map);
+
+    v.checks_met = 0;
+    if (v.covered.psnr_db >= thresholds.psnr_min_db) ++v.checks_met;
+    else v.reasons.push_back(fmt("PSNR %.1f dB is below %.1f dB", v.covered.psnr_db, thresholds.psnr_min_db));
+    if (v.covered.ssim >= thresholds.ssim_min) ++v.checks_met;
+    else v.reasons.push_back(fmt("SSIM %.3f is below %.3f", v.covered.ssim, thresholds.ssim_min));
+    if (v.covered.flip_mean <= thresholds.flip_mean_max) ++v.checks_met;
+    else v.reasons.push_back(fmt("FLIP mean %.3f is above %.3f", v.covered.flip_mean, thresholds.flip_mean_max));
+    if (v.covered.mismatch_fraction <= thresholds.mismatch_max) {
+        ++v.checks_met;
+    } else {
+        std::string where;
+        if (!v.worst.tile.empty()) {
+            char buf[96];
+            std::snprintf(buf, sizeof buf, " (worst around x=%d, y=%d)", v.worst.centre.x, v.worst.centre.y);
+            where = buf;
+        }
+        v.reasons.push_back(fmt("%.1f%% of covered pixels differ, more than %.1f%%",
+                                100.0 * v.covered.mismatch_fraction, 100.0 * thresholds.mismatch_max) +
+                            where);
+    }
+    if (nf.any()) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "%zu pixels are NaN and %zu are Inf, first at x=%d, y=%d (e.g. pow() of a negative "
+                      "base, normalize() of a zero vector, division by zero)",
+                      nf.nan_pixels, nf.inf_pixels, nf.first_positions.empty() ? 0 : nf.first_positions[0].x,
+                      nf.first_positions.empty() ? 0 : nf.first_positions[0].y);
+        v.reasons.insert(v.reasons.begin(), buf);
+    }
+    v.passed = !nf.any() && v.checks_met == v.checks_total;
+    return v;
+}
+
+double scenePoints(const ImageVerdict& verdict, double max_points) {
+    if (verdict.passed) return max_points;
+    if (verdict.nan_count || verdict.inf_count) return 0.0;
+    return 0.5 * max_points * verdict.checks_met / verdict.checks_total;
+}
+
+}  // namespace grader
