@@ -32,6 +32,6 @@ TEST(GlContextNames, ParseBackend) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, GlContextTest, ::testing::Values(Backend::OSMesa, Backend::Egl),
-                         [](const auto& info) { return std::string(shaderlab::backendName(info.param)); });
+                         [](const auto& param_info) { return std::string(shaderlab::backendName(param_info.param)); });
 
 }  // namespace

@@ -132,7 +132,8 @@ std::string writeImage(const grader::Image& img, const fs::path& out_dir, const 
     return rel.generic_string();
 }
 
-grader::ReportLab gradeLab(const std::string& submission_dir, const std::string& id, const GradeOptions& options) {
+grader::ReportLab gradeLab(const std::string& submission_dir, const std::string& id, const GradeOptions& options,
+                           std::string* renderer) {
     grader::ReportLab lab;
     lab.id = id;
     const auto t0 = std::chrono::steady_clock::now();
@@ -161,6 +162,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     // The student first: a submission that does not build needs no reference at all.
     const IsolatedRender student =
         renderLabIsolated(spec, (fs::path(submission_dir) / id).string(), options.backend, options.limits);
+    if (!student.renderer.empty()) *renderer = student.renderer;
     for (const Diagnostic& d : student.render.diagnostics)
         lab.diagnostics.push_back({d.file, d.line, d.column, d.severity, d.message});
     if (student.status != IsolatedStatus::Ok) {
@@ -267,7 +269,7 @@ grader::Report gradeSubmission(const std::string& submission_dir, const GradeOpt
     report.backend = backendName(options.backend);
     const std::vector<std::string> ids = options.labs.empty() ? listLabIds(options.labs_root) : options.labs;
     for (const std::string& id : ids) {
-        grader::ReportLab lab = gradeLab(submission_dir, id, options);
+        grader::ReportLab lab = gradeLab(submission_dir, id, options, &report.renderer);
         report.score += lab.score;
         report.max_score += lab.max_score;
         if (on_lab) on_lab(lab);

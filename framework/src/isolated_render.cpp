@@ -53,6 +53,7 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
         result["status"] = "render_error";
         result["message"] = ctx.error;
     } else {
+        result["renderer"] = ctx.context->info().renderer + ", OpenGL " + ctx.context->info().version;
         const LabRender r = renderLab(spec, shader_dir, options);
         result["status"] = renderStatusName(r.status);
         result["message"] = r.message;
@@ -111,6 +112,7 @@ bool readChildResult(const fs::path& dir, IsolatedRender* out) {
     if (result.is_discarded() || !result.is_object()) return false;
     out->status = statusFromName(result.value("status", ""));
     out->message = result.value("message", "");
+    out->renderer = result.value("renderer", "");
     out->render.status = renderStatusOf(out->status);
     out->render.message = out->message;
     for (const json& d : result.value("diagnostics", json::array())) {

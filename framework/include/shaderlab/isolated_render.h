@@ -24,6 +24,7 @@ struct IsolatedRender {
     IsolatedStatus status = IsolatedStatus::Ok;
     std::string message;
     LabRender render;  // scenes and diagnostics as the child produced them
+    std::string renderer;  // GL_RENDERER and GL_VERSION the child saw
     double wall_ms = 0.0;
 };
 

@@ -1,0 +1,182 @@
+// End to end through the `shaderlab` program: every bundled submission (the reference
+// solutions, the starter code and the known mistakes of tests/submissions/) is graded and must
+// give what tests/submissions/expected.json says. Also pins the exit codes of the commands.
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+struct CliRun {
+    int exit_code = -1;
+    std::string output;
+};
+
+CliRun runCli(const std::string& args) {
+    CliRun r;
+    const std::string cmd = std::string(SHADERLAB_CLI) + " " + args + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
+    const int status = pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+json readJson(const fs::path& p) {
+    std::ifstream in(p);
+    return json::parse(in, nullptr, false);
+}
+
+fs::path scratch(const std::string& name) {
+    const fs::path p = fs::temp_directory_path() / ("shaderlab_bundled_" + name);
+    fs::remove_all(p);
+    return p;
+}
+
+const fs::path kSubmissions = fs::path(SHADERLAB_SOURCE_DIR) / "tests" / "submissions";
+
+class BundledSubmission : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BundledSubmission, GradesAsExpected) {
+    const json expected_all = readJson(kSubmissions / "expected.json");
+    ASSERT_FALSE(expected_all.is_discarded());
+    const json& expected = expected_all["submissions"][GetParam()];
+    const fs::path submission = fs::weakly_canonical(kSubmissions / GetParam());
+    const fs::path out = scratch(fs::path(GetParam()).filename().string());
+
+    std::string args = "grade " + submission.string() + " --out " + out.string() + " --timeout 5";
+    for (const auto& [lab, _] : expected.items()) args += " --lab " + lab;
+    const CliRun run = runCli(args);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+
+    const json report = readJson(out / "report.json");
+    ASSERT_FALSE(report.is_discarded()) << run.output;
+    ASSERT_EQ(report["schema_version"], 1);
+    for (const json& lab : report["labs"]) {
+        const json& want = expected[lab["id"].get<std::string>()];
+        EXPECT_EQ(lab["status"], want["status"]) << lab.dump(2).substr(0, 3000);
+        if (want["status"] == "passed") {
+            EXPECT_DOUBLE_EQ(lab["score"].get<double>(), lab["max_score"].get<double>());
+        } else {
+            EXPECT_LT(lab["score"].get<double>(), lab["max_score"].get<double>());
+        }
+
+        std::set<std::string> failing;
+        for (const json& s : lab["scenes"]) {
+            if (s["status"] != "passed") failing.insert(s["name"].get<std::string>());
+            // Every graded scene comes with its three pictures.
+            for (const char* kind : {"student", "reference", "diff"})
+                EXPECT_TRUE(fs::is_regular_file(out / s["images"][kind].get<std::string>())) << kind;
+            if (want.value("nan_in_every_scene", false)) {
+                EXPECT_GT(s["metrics"]["nan_count"].get<int>(), 0) << s["name"];
+                EXPECT_NE(s["message"].get<std::string>().find("NaN"), std::string::npos);
+            }
+        }
+        if (want.contains("failing_scenes")) {
+            EXPECT_EQ(failing, want["failing_scenes"].get<std::set<std::string>>());
+        }
+        if (want.contains("failing_scenes_include")) {
+            for (const auto& name : want["failing_scenes_include"].get<std::vector<std::string>>())
+                EXPECT_TRUE(failing.count(name)) << name;
+        }
+        if (want.contains("diagnostic")) {
+            bool found = false;
+            for (const json& d : lab["diagnostics"])
+                found = found || (d["file"] == want["diagnostic"]["file"] && d["line"] == want["diagnostic"]["line"]);
+            EXPECT_TRUE(found) << lab["diagnostics"].dump(2);
+        }
+    }
+}
+
+std::vector<std::string> bundledNames() {
+    std::vector<std::string> names;
+    const json expected = readJson(kSubmissions / "expected.json");
+    for (const auto& [name, _] : expected["submissions"].items()) names.push_back(name);
+    return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(All, BundledSubmission, ::testing::ValuesIn(bundledNames()), [](const auto& param_info) {
+    std::string n = fs::path(param_info.param).filename().string();
+    for (char& c : n)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return n;
+});
+
+// Every folder under tests/submissions/ is listed, so none is silently left out of CI.
+TEST(BundledSubmissions, EveryFolderHasAnExpectation) {
+    const json expected = readJson(kSubmissions / "expected.json");
+    for (const auto& entry : fs::directory_iterator(kSubmissions)) {
+        if (!entry.is_directory()) continue;
+        EXPECT_TRUE(expected["submissions"].contains(entry.path().filename().string())) << entry.path();
+    }
+}
+
+TEST(CliExitCodes, CheckPassesTheReferenceAndFailsTheStarter) {
+    const fs::path out = scratch("check");
+    const std::string ref = (fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions").string();
+    const CliRun good = runCli("check 01-phong --submission " + ref + " --out " + out.string());
+    EXPECT_EQ(good.exit_code, 0) << good.output;
+    EXPECT_NE(good.output.find("PASS"), std::string::npos) << good.output;
+    const CliRun bad = runCli("check 01-phong --out " + out.string());  // the starter code in labs/
+    EXPECT_EQ(bad.exit_code, 1) << bad.output;
+    EXPECT_NE(bad.output.find("FAIL"), std::string::npos) << bad.output;
+    // Not a terminal: no colour escapes in the output.
+    EXPECT_EQ(bad.output.find("\033["), std::string::npos);
+}
+
+TEST(CliExitCodes, BadArgumentsAndMissingInputsExitTwo) {
+    EXPECT_EQ(runCli("check no-such-lab").exit_code, 2);
+    EXPECT_EQ(runCli("grade /no/such/folder --out " + scratch("missing").string()).exit_code, 2);
+    EXPECT_EQ(runCli("compare /no/such/a.png /no/such/b.png").exit_code, 2);
+    EXPECT_NE(runCli("render").exit_code, 0);
+}
+
+TEST(CliExitCodes, SymlinkOutOfTheSubmissionIsRefused) {
+    const fs::path sub = scratch("symlink");
+    fs::create_directories(sub / "01-phong");
+    fs::copy_file(fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions/01-phong/phong.vert", sub / "01-phong/phong.vert");
+    fs::create_symlink("/etc/passwd", sub / "01-phong/phong.frag");
+    const fs::path out = scratch("symlink_out");
+    const CliRun run = runCli("grade " + sub.string() + " --out " + out.string() + " --lab 01-phong");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const json report = readJson(out / "report.json");
+    EXPECT_EQ(report["labs"][0]["status"], "missing");
+    EXPECT_NE(report["labs"][0]["message"].get<std::string>().find("outside"), std::string::npos);
+}
+
+TEST(CliCompare, JsonForIdenticalAndDifferentImages) {
+    const fs::path out = scratch("compare");
+    const std::string ref = (fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions").string();
+    ASSERT_EQ(runCli("render " + ref + " --lab 01-phong --out " + out.string()).exit_code, 0);
+    const std::string a = (out / "01-phong/sphere.png").string();
+    const std::string b = (out / "01-phong/torus.png").string();
+    const CliRun same = runCli("compare " + a + " " + a + " --json");
+    ASSERT_EQ(same.exit_code, 0) << same.output;
+    const json js = json::parse(same.output, nullptr, false);
+    ASSERT_FALSE(js.is_discarded()) << same.output;
+    EXPECT_TRUE(js["psnr_db"].is_null());
+    EXPECT_TRUE(js["identical"].get<bool>());
+    EXPECT_DOUBLE_EQ(js["ssim"].get<double>(), 1.0);
+    EXPECT_DOUBLE_EQ(js["flip_mean"].get<double>(), 0.0);
+    const CliRun diff = runCli("compare " + a + " " + b + " --json");
+    const json jd = json::parse(diff.output, nullptr, false);
+    ASSERT_FALSE(jd.is_discarded()) << diff.output;
+    EXPECT_LT(jd["psnr_db"].get<double>(), 30.0);
+    EXPECT_GT(jd["mismatch_fraction"].get<double>(), 0.01);
+}
+
+}  // namespace

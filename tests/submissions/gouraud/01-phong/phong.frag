@@ -1,0 +1,7 @@
+#version 330 core
+// Known mistake: Gouraud shading (see phong.vert).
+in vec3 v_color;
+out vec4 o_color;
+void main() {
+    o_color = vec4(v_color, 1.0);
+}
