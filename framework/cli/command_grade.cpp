@@ -219,9 +219,10 @@ int runGoldens(const GoldensArgs& args) {
                                            : args.reference_root;
     Backend backend{};
     parseBackend(args.common.backend, &backend);
-    const std::vector<std::string> errors = writeGoldens(reference_root, labs_root, args.common.labs, backend);
+    const std::vector<std::string> errors = writeGoldens(reference_root, labs_root, args.common.labs, backend, args.golden_root);
     for (const std::string& e : errors) std::cerr << "shaderlab: " << e << "\n";
-    if (errors.empty()) std::printf("goldens written under %s/*/golden/\n", labs_root.c_str());
+    const std::string where = args.golden_root.empty() ? labs_root : args.golden_root;
+    if (errors.empty()) std::printf("goldens written under %s/*/golden/\n", where.c_str());
     return errors.empty() ? 0 : 2;
 }
 

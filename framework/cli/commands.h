@@ -55,6 +55,7 @@ int runCompare(const CompareArgs& args);
 struct GoldensArgs {
     CommonOptions common;
     std::string reference_root;  // empty: <labs>/../reference_solutions
+    std::string golden_root;     // empty: into each lab's folder; else <golden_root>/<lab>/golden/
 };
 int runGoldens(const GoldensArgs& args);
 

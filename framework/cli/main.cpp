@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
     GoldensArgs goldens;
     CLI::App* goldens_cmd = app.add_subcommand("goldens", "render the reference solutions into labs/*/golden/");
     goldens_cmd->add_option("--reference", goldens.reference_root, "reference solutions folder");
+    goldens_cmd->add_option("--into", goldens.golden_root, "write to DIR/<lab>/golden/ instead of the labs (to compare)");
     add_common(goldens_cmd, &goldens.common);
 
     std::string info_backend = "osmesa";
