@@ -195,10 +195,44 @@ std::size_t checkGlbLayout(const std::string& bytes, std::vector<std::string>* w
     return static_cast<std::size_t>(length);
 }
 
+// tinygltf turns "extras" and "extensions" into its Value type recursively, so a file nesting
+// arrays a hundred thousand deep overflows the stack inside tinygltf. Real glTF nests about ten
+// levels; this limit leaves generous room for extras.
+constexpr int kMaxJsonDepth = 128;
+
+void checkJsonDepth(const char* begin, const char* end) {
+    int depth = 0;
+    bool in_string = false;
+    bool escaped = false;
+    for (const char* p = begin; p != end; ++p) {
+        const char c = *p;
+        if (in_string) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth) {
+                fail("JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+            }
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+}
+
 // JSON is checked here before tinygltf sees it, so that "not JSON" reads as that rather than as
 // a parser exception text.
 void checkJson(const char* begin, const char* end) {
-    if (nlohmann::json::accept(begin, end)) return;
+    if (nlohmann::json::accept(begin, end)) {
+        checkJsonDepth(begin, end);
+        return;
+    }
     try {
         const nlohmann::json parsed = nlohmann::json::parse(begin, end);
         (void)parsed;
@@ -495,12 +529,14 @@ private:
     int convertPrimitive(std::size_t mesh_index, std::size_t prim_index);
     void convertMaterials();
     glm::mat4 localMatrix(std::size_t node_index) const;
+    glm::mat4 localMatrixUnchecked(std::size_t node_index) const;
     std::vector<int> rootNodes() const;
     void walkNodes();
     void visitNode(std::size_t node_index, const glm::mat4& world);
     void addLight(std::size_t node_index, const glm::mat4& world);
     void computeBounds();
     void placeCamera();
+    void checkCamera() const;
 
     const tinygltf::Model& model_;
     Scene& scene_;
@@ -515,6 +551,18 @@ private:
 bool finite(const std::vector<double>& values) {
     return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
 }
+
+// glTF numbers are doubles; 1e300 is finite there but infinite as the float we store.
+bool finiteMatrix(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+            if (!std::isfinite(m[c][r])) return false;
+        }
+    }
+    return true;
+}
+
+bool finiteVec(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
     const glm::vec3 n = glm::cross(b - a, c - a);
@@ -647,9 +695,11 @@ void Converter::convertMaterials() {
         Material m;
         m.name = src.name.empty() ? "material" + std::to_string(i) : src.name;
         const auto& f = src.pbrMetallicRoughness.baseColorFactor;
-        if (f.size() == 4 && finite(f)) {
-            m.base_color = glm::vec4(static_cast<float>(f[0]), static_cast<float>(f[1]),
-                                     static_cast<float>(f[2]), static_cast<float>(f[3]));
+        const glm::vec4 color = f.size() == 4 ? glm::vec4(static_cast<float>(f[0]), static_cast<float>(f[1]),
+                                                          static_cast<float>(f[2]), static_cast<float>(f[3]))
+                                              : glm::vec4(std::numeric_limits<float>::quiet_NaN());
+        if (std::isfinite(color.r + color.g + color.b + color.a)) {
+            m.base_color = color;
         } else {
             warnings_.push_back("material " + std::to_string(i) + ": baseColorFactor is not 4 finite numbers; white used");
         }
@@ -658,6 +708,12 @@ void Converter::convertMaterials() {
 }
 
 glm::mat4 Converter::localMatrix(std::size_t node_index) const {
+    const glm::mat4 m = localMatrixUnchecked(node_index);
+    if (!finiteMatrix(m)) fail("node " + std::to_string(node_index) + ": its transform is too large for floats");
+    return m;
+}
+
+glm::mat4 Converter::localMatrixUnchecked(std::size_t node_index) const {
     const tinygltf::Node& node = model_.nodes[node_index];
     const std::string who = "node " + std::to_string(node_index);
     if (!node.matrix.empty()) {
@@ -736,6 +792,9 @@ void Converter::walkNodes() {
         }
         visited[node_index] = 1;
         const glm::mat4 world = parent * localMatrix(node_index);
+        if (!finiteMatrix(world)) {
+            fail("node " + std::to_string(index) + ": its world transform overflows to infinity or NaN");
+        }
         visitNode(node_index, world);
         const auto& children = model_.nodes[node_index].children;
         for (auto child = children.rbegin(); child != children.rend(); ++child) stack.emplace_back(*child, world);
@@ -827,6 +886,9 @@ void Converter::addLight(std::size_t node_index, const glm::mat4& world) {
     if (!std::isfinite(src.range) || src.range < 0.0) fail(lwho + ": range must be finite and >= 0");
     light.intensity = static_cast<float>(src.intensity);
     light.range = static_cast<float>(src.range);
+    if (!finiteVec(light.color) || !std::isfinite(light.intensity) || !std::isfinite(light.range)) {
+        fail(lwho + ": color, intensity or range is too large for a float");
+    }
     light.position = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     // Lights shine down their local -Z; a scaled node must not change the direction's length.
     const glm::vec3 dir = glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
@@ -874,6 +936,7 @@ void Converter::placeCamera() {
         cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
         cam.z_near = std::max((distance - radius) * 0.5f, distance * 1e-3f);
         cam.z_far = (distance + radius) * 2.0f;
+        checkCamera();
         return;
     }
 
@@ -908,6 +971,20 @@ void Converter::placeCamera() {
     } else {
         // Infinite projection in the file: a finite far plane well behind the whole scene.
         cam.z_far = std::max(cam.z_near * 1000.0f, 2.0f * (glm::length(centre - cam.position) + radius));
+    }
+    checkCamera();
+}
+
+// Huge but finite coordinates can still overflow the float arithmetic above; a camera with an
+// infinite or NaN field would only fail later, in the renderer, with a black image.
+void Converter::checkCamera() const {
+    const Camera& cam = scene_.camera;
+    if (!finiteVec(cam.position) || !finiteVec(cam.target) || !finiteVec(cam.up) || !std::isfinite(cam.fov_y_deg) ||
+        !std::isfinite(cam.z_near) || !std::isfinite(cam.z_far) || !std::isfinite(cam.file_aspect) ||
+        !(cam.z_near > 0.0f) ||
+        !(cam.z_far > cam.z_near) || cam.position == cam.target) {
+        fail(std::string(scene_.has_camera ? "the file's camera" : "the default camera framing the scene") +
+             " is not finite or not valid (are the scene's coordinates within float range?)");
     }
 }
 

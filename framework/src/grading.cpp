@@ -187,7 +187,8 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     thresholds.flip_mean_max = spec.grading.flip_mean_max;
     thresholds.mismatch_max = spec.grading.mismatch_max;
     thresholds.pixel_tolerance = spec.grading.pixel_tolerance;
-    const double scene_points = spec.scenes.empty() ? 0.0 : spec.grading.points / spec.scenes.size();
+    const double scene_points =
+        spec.scenes.empty() ? 0.0 : static_cast<double>(spec.grading.points) / static_cast<double>(spec.scenes.size());
     const fs::path out_dir = options.out_dir;
     std::vector<std::string> write_errors;
 

@@ -46,6 +46,23 @@ constexpr std::size_t kMaxLabJsonBytes = std::size_t{1} << 20;
 constexpr int kMaxPixels = 4096;
 // OpenGL 3.3 guarantees 16 texture units to a fragment shader; more inputs could not be bound.
 constexpr std::size_t kMaxInputs = 16;
+// The renderer passes at most SL_MAX_LIGHTS (4) lights to shaders and would drop the rest.
+constexpr std::size_t kMaxLights = 4;
+// Uniforms the framework sets itself (docs/student-contract.md). A lab value of the same name
+// would be applied after the framework's and silently replace it.
+const std::vector<std::string> kFrameworkUniforms = {"u_model",
+                                                     "u_view",
+                                                     "u_projection",
+                                                     "u_model_view",
+                                                     "u_model_view_projection",
+                                                     "u_normal_matrix",
+                                                     "u_camera_position",
+                                                     "u_light_count",
+                                                     "u_light_position",
+                                                     "u_light_color",
+                                                     "u_base_color",
+                                                     "u_time",
+                                                     "u_resolution"};
 constexpr std::size_t kMaxQuotedChars = 60;
 
 // =============================================================================================
@@ -290,9 +307,9 @@ bool loadJson(const std::string& text, Diagnostics& diag, json& out) {
     DuplicateKeyFinder finder;
     json::sax_parse(text, &finder);
     for (const std::string& path : finder.duplicates) {
-        diag.error(path,
-                   "duplicate key: it appears more than once in this object, and only the last one "
-                   "would count");
+        diag.error(
+            path,
+            "duplicate key: it appears more than once in this object, and only the last one would count");
     }
     return true;
 }
@@ -454,6 +471,10 @@ class FieldReader {
                    " is not a valid GLSL identifier (letters, digits and '_', not starting with a digit)";
         }
         if (s.rfind("gl_", 0) == 0) return quote(s) + ": names starting with \"gl_\" are reserved by GLSL";
+        if (std::find(kFrameworkUniforms.begin(), kFrameworkUniforms.end(), s) != kFrameworkUniforms.end()) {
+            return quote(s) + " is set by the framework (docs/student-contract.md); choose another name" +
+                   (s == "u_time" ? " (a scene's \"time\" sets u_time)" : "");
+        }
         return "";
     }
 
@@ -713,8 +734,8 @@ void readTarget(FieldReader& r, const json& v, const std::string& path, TargetSp
     const json* scale = FieldReader::find(v, "scale");
     if (size && scale) {
         r.error(joinKey(path, "scale"),
-                "cannot be combined with \"size\": give the target either a size in pixels "
-                "or a scale of the lab resolution");
+                "cannot be combined with \"size\": give the target either a size in pixels or a scale of the "
+                "lab resolution");
     } else if (size) {
         readSize(r, *size, joinKey(path, "size"), out.width, out.height);
     } else if (scale) {
@@ -758,8 +779,8 @@ void readPass(FieldReader& r, const json& v, const std::string& path, PassSpec& 
     out.target.name = out.name;  // the default; an explicit "name" below replaces it
     if (target && draw_into) {
         r.error(joinKey(path, "draw_into"),
-                "cannot be combined with \"target\": a pass either owns a target or "
-                "draws into an earlier pass's");
+                "cannot be combined with \"target\": a pass either owns a target or draws into an earlier "
+                "pass's");
     } else if (target) {
         readTarget(r, *target, joinKey(path, "target"), out.target);
     } else if (draw_into) {
@@ -833,8 +854,8 @@ void readCamera(FieldReader& r, const json& v, const std::string& path, CameraOv
                     "must differ from position: the camera would have no view direction");
         } else if (out.up && glm::length(glm::cross(glm::normalize(dir), glm::normalize(*out.up))) < 1e-4f) {
             r.error(joinKey(path, "up"),
-                    "is parallel to the view direction (target - position), so the camera's "
-                    "orientation is undefined");
+                    "is parallel to the view direction (target - position), so the camera's orientation is "
+                    "undefined");
         }
     }
 }
@@ -860,8 +881,7 @@ void readLight(FieldReader& r, const json& v, const std::string& path, LightSpec
         if (!position) r.error(joinKey(path, "position"), "required for a point light");
         if (direction) {
             r.error(joinKey(path, "direction"),
-                    "only applies to directional lights (a point light shines in all "
-                    "directions)");
+                    "only applies to directional lights (a point light shines in all directions)");
         }
     } else if (type_ok) {
         if (!direction) r.error(joinKey(path, "direction"), "required for a directional light");
@@ -886,6 +906,10 @@ void readScene(FieldReader& r, const json& v, const std::string& path, SceneSpec
     if (const json* f = FieldReader::find(v, "lights")) {
         const std::string at = joinKey(path, "lights");
         if (r.array(*f, at, "objects")) {
+            if (f->size() > kMaxLights) {
+                r.error(at, "has " + std::to_string(f->size()) + " lights; shaders receive at most " +
+                                std::to_string(kMaxLights) + " (SL_MAX_LIGHTS)");
+            }
             std::vector<LightSpec> lights(f->size());
             for (std::size_t i = 0; i < f->size(); ++i) readLight(r, (*f)[i], joinIndex(at, i), lights[i]);
             out.lights = std::move(lights);
@@ -998,6 +1022,19 @@ int findTargetOwner(const LabSpec& spec, const std::string& name) {
     return -1;
 }
 
+// Index of the pass whose target pass `i` renders into: `i` itself when it owns one, else the
+// owner reached by following draw_into; -1 when the chain is broken. Every step must go to an
+// earlier pass, so the walk always ends.
+int renderTargetOwner(const LabSpec& spec, std::size_t i) {
+    std::size_t at = i;
+    while (!spec.passes[at].draw_into.empty()) {
+        const int into = findPass(spec, spec.passes[at].draw_into);
+        if (into < 0 || static_cast<std::size_t>(into) >= at) return -1;
+        at = static_cast<std::size_t>(into);
+    }
+    return static_cast<int>(at);
+}
+
 std::string passLabel(const LabSpec& spec, int i) {
     const std::string& name = spec.passes[static_cast<std::size_t>(i)].name;
     return passPath(static_cast<std::size_t>(i)) + (name.empty() ? "" : " (" + quote(name) + ")");
@@ -1060,9 +1097,13 @@ std::string badInputReason(const LabSpec& spec, std::size_t i, const std::string
     }
     const int pass = findPass(spec, name);
     if (pass >= 0 && !spec.passes[static_cast<std::size_t>(pass)].draw_into.empty()) {
-        return "pass " + quote(name) + " has no target of its own (it draws into " +
-               quote(spec.passes[static_cast<std::size_t>(pass)].draw_into) +
-               "); name the target it draws into";
+        const int writes_to = renderTargetOwner(spec, static_cast<std::size_t>(pass));
+        const std::string into =
+            writes_to >= 0
+                ? "the target " + quote(spec.passes[static_cast<std::size_t>(writes_to)].target.name)
+                : quote(spec.passes[static_cast<std::size_t>(pass)].draw_into);
+        return "pass " + quote(name) + " has no target of its own (it draws into " + into +
+               "); inputs name targets";
     }
     if (pass >= 0) {
         return "pass " + quote(name) + " names its target " +
@@ -1088,12 +1129,11 @@ void validatePassReferences(const LabSpec& spec, Diagnostics& diag) {
             const int owner = findTargetOwner(spec, name);
             if (owner < 0 || owner >= static_cast<int>(i)) {
                 diag.error(at, badInputReason(spec, i, name));
-            } else if (!pass.draw_into.empty() &&
-                       pass.draw_into == spec.passes[static_cast<std::size_t>(owner)].name) {
+            } else if (renderTargetOwner(spec, i) == owner) {
                 // Sampling the texture being rendered to is undefined behaviour in OpenGL.
-                diag.error(at, "reads target " + quote(name) +
-                                   ", which this pass draws into; a pass cannot sample "
-                                   "the image it renders to");
+                diag.error(at,
+                           "reads target " + quote(name) +
+                               ", which this pass draws into; a pass cannot sample the image it renders to");
             }
         }
         if (pass.draw_into.empty()) continue;
@@ -1107,12 +1147,7 @@ void validatePassReferences(const LabSpec& spec, Diagnostics& diag) {
             diag.error(at, "a pass cannot draw into itself");
         } else if (into > static_cast<int>(i)) {
             diag.error(at, passLabel(spec, into) +
-                               " runs after this pass; a pass can only draw into an earlier "
-                               "pass's target");
-        } else if (!spec.passes[static_cast<std::size_t>(into)].draw_into.empty()) {
-            const std::string& further = spec.passes[static_cast<std::size_t>(into)].draw_into;
-            diag.error(at, passLabel(spec, into) + " has no target of its own (it draws into " +
-                               quote(further) + "); draw into " + quote(further) + " instead");
+                               " runs after this pass; a pass can only draw into an earlier pass's target");
         }
     }
 }
@@ -1275,13 +1310,13 @@ void completeSpec(LabSpec& spec, const ReadNotes& notes) {
         }
     }
     if (!spec.passes.empty()) spec.passes.back().graded = true;
-    // A pass drawing into another carries a copy of that target's description, so the renderer
-    // knows its size and format without following the reference.
+    // A pass drawing into another carries a copy of the description of the target it ends up
+    // in (following chains), so its size and format are known without following references.
     for (std::size_t i = 0; i < spec.passes.size(); ++i) {
         PassSpec& pass = spec.passes[i];
         if (pass.draw_into.empty()) continue;
-        const int owner = findPass(spec, pass.draw_into);
-        if (owner >= 0 && owner < static_cast<int>(i))
+        const int owner = renderTargetOwner(spec, i);
+        if (owner >= 0 && owner != static_cast<int>(i))
             pass.target = spec.passes[static_cast<std::size_t>(owner)].target;
     }
 }
@@ -1326,21 +1361,20 @@ LabSpecResult parseLabSpecText(const std::string& json_text, const std::string& 
 LabSpecResult parseLabSpec(const std::string& lab_dir) {
     const std::string origin = (fs::path(lab_dir) / "lab.json").string();
     std::error_code ec;
+    std::string problem;
     if (!fs::is_directory(lab_dir, ec)) {
-        LabSpecResult result;
-        result.errors.push_back(origin + ": file not found (the lab folder " + lab_dir + " does not exist)");
-        return result;
+        problem = origin + ": file not found (the lab folder " + lab_dir + " does not exist)";
+    } else {
+        const FileText file = readFile(origin, kMaxLabJsonBytes);
+        if (file.ok) return parseLabSpecText(file.text, origin, lab_dir);
+        problem = file.error;  // already "<path>: <problem>"
     }
-    const FileText file = readFile(origin, kMaxLabJsonBytes);
-    if (!file.ok) {
-        LabSpecResult result;
-        const LabLocation loc = locateLab(lab_dir);
-        result.spec.lab_dir = loc.dir;
-        result.spec.labs_root = loc.root;
-        result.errors.push_back(file.error);
-        return result;
-    }
-    return parseLabSpecText(file.text, origin, lab_dir);
+    LabSpecResult result;
+    const LabLocation loc = locateLab(lab_dir);
+    result.spec.lab_dir = loc.dir;
+    result.spec.labs_root = loc.root;
+    result.errors.push_back(problem);
+    return result;
 }
 
 }  // namespace shaderlab

@@ -1,7 +1,7 @@
 // The typed form of a lab's `lab.json` (documented field by field in docs/lab-format.md).
 // parseLabSpec() reads and validates; every message names the file and the JSON path of the
-// field at fault ("labs/01-phong/lab.json: passes[0].state.cull: expected one of back, front,
-// none, got \"sideways\""). The framework executes a LabSpec and never looks at a lab's id.
+// field at fault ("labs/01-phong/lab.json: passes[0].state.cull: expected one of \"back\", \"front\",
+// \"none\", got \"sideways\""). The framework executes a LabSpec and never looks at a lab's id.
 #pragma once
 
 #include <glm/glm.hpp>
