@@ -18,11 +18,6 @@
 // Buffers are read as little-endian, which is what glTF stores and what the hosts we run on are.
 #include "shaderlab/gltf_loader.h"
 
-#include "shaderlab/paths.h"
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -30,13 +25,18 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
 #include <new>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "shaderlab/paths.h"
 
 namespace fs = std::filesystem;
 
@@ -44,11 +44,17 @@ namespace shaderlab {
 
 namespace {
 
-// Caps that keep a hostile file from making us allocate without bound. The bundled scenes are
-// tens of thousands of vertices; a lab never needs anything near these.
+// Caps that keep a hostile file from making us allocate or loop without bound. The bundled
+// scenes are tens of thousands of vertices; a lab never needs anything near these. Data read
+// from a bufferView is already bounded by the file size; the caps matter where a few bytes of
+// JSON can ask for a lot: accessors without a bufferView (all zeros), flat-normal expansion,
+// and one big mesh instanced by many nodes.
 constexpr std::size_t kMaxFileBytes = std::size_t{256} << 20;
-constexpr std::size_t kMaxVertices = 50'000'000;   // per accessor and per scene
-constexpr std::size_t kMaxIndices = 150'000'000;   // per accessor and per scene
+constexpr std::size_t kMaxVertices = 10'000'000;     // per accessor and per scene (~320 MB of Mesh)
+constexpr std::size_t kMaxIndices = 30'000'000;      // per accessor and per scene
+constexpr std::size_t kMaxUnbackedCount = 1u << 20;  // accessors without a bufferView
+constexpr std::size_t kMaxDrawItems = 100'000;
+constexpr std::size_t kExactBoundsBudget = 20'000'000;  // vertex transforms for exact bounds
 
 // Thrown by the conversion code and caught in loadGltfScene: the checks sit deep in helpers, and
 // unwinding to one place keeps each check a single line.
@@ -66,8 +72,8 @@ std::string inQuotes(const std::string& s) { return "'" + s + "'"; }
 // lookup is answered "does not exist", since nothing is resolved against the working directory.
 
 struct FsGuard {
-    std::string folder;  // absolute folder of the scene file, as handed to tinygltf
-    std::string prefix;  // `folder` with exactly one trailing '/', what tinygltf joins URIs onto
+    std::string folder;   // absolute folder of the scene file, as handed to tinygltf
+    std::string prefix;   // `folder` with exactly one trailing '/', what tinygltf joins URIs onto
     std::string refusal;  // first URI refused (escapes the folder, not a regular file, ...)
     std::string missing;  // first URI whose file does not exist
     std::map<std::string, std::string> approved;  // path tinygltf asked about -> canonical path
@@ -140,8 +146,8 @@ bool guardWriteWholeFile(std::string* err, const std::string&, const std::vector
 
 // Images are never decoded (see the top of the file); accepting them unread keeps tinygltf from
 // running its image decoder on untrusted bytes.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
-               int, void*) {
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+               void*) {
     return true;
 }
 
@@ -169,9 +175,11 @@ std::size_t checkGlbLayout(const std::string& bytes, std::vector<std::string>* w
         fail("truncated GLB: the header declares " + std::to_string(length) + " bytes but the file has " +
              std::to_string(size));
     }
-    if (length < 20) fail("GLB header declares " + std::to_string(length) + " bytes, too few for a JSON chunk");
+    if (length < 20)
+        fail("GLB header declares " + std::to_string(length) + " bytes, too few for a JSON chunk");
     if (length < size) {
-        warnings->push_back(std::to_string(size - length) + " bytes after the declared end of the GLB ignored");
+        warnings->push_back(std::to_string(size - length) +
+                            " bytes after the declared end of the GLB ignored");
     }
     const std::uint64_t json_length = readU32(bytes, 12);
     if (readU32(bytes, 16) != 0x4E4F534Au) fail("bad GLB: the first chunk is not a JSON chunk");
@@ -276,40 +284,61 @@ std::string byteRange(std::uint64_t offset, std::uint64_t length) {
 
 const char* typeName(int type) {
     switch (type) {
-        case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-        case TINYGLTF_TYPE_VEC2: return "VEC2";
-        case TINYGLTF_TYPE_VEC3: return "VEC3";
-        case TINYGLTF_TYPE_VEC4: return "VEC4";
-        case TINYGLTF_TYPE_MAT2: return "MAT2";
-        case TINYGLTF_TYPE_MAT3: return "MAT3";
-        case TINYGLTF_TYPE_MAT4: return "MAT4";
-        default: return "an unknown type";
+        case TINYGLTF_TYPE_SCALAR:
+            return "SCALAR";
+        case TINYGLTF_TYPE_VEC2:
+            return "VEC2";
+        case TINYGLTF_TYPE_VEC3:
+            return "VEC3";
+        case TINYGLTF_TYPE_VEC4:
+            return "VEC4";
+        case TINYGLTF_TYPE_MAT2:
+            return "MAT2";
+        case TINYGLTF_TYPE_MAT3:
+            return "MAT3";
+        case TINYGLTF_TYPE_MAT4:
+            return "MAT4";
+        default:
+            return "an unknown type";
     }
 }
 
 const char* componentTypeName(int component_type) {
     switch (component_type) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-        case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-        case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-        case TINYGLTF_COMPONENT_TYPE_DOUBLE: return "DOUBLE";
-        default: return "an unknown component type";
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+            return "BYTE";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return "UNSIGNED_BYTE";
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+            return "SHORT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return "UNSIGNED_SHORT";
+        case TINYGLTF_COMPONENT_TYPE_INT:
+            return "INT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            return "UNSIGNED_INT";
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return "FLOAT";
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+            return "DOUBLE";
+        default:
+            return "an unknown component type";
     }
 }
 
 std::size_t componentSize(int component_type) {
     switch (component_type) {
         case TINYGLTF_COMPONENT_TYPE_BYTE:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return 1;
         case TINYGLTF_COMPONENT_TYPE_SHORT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return 2;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-        default: return 0;  // INT and DOUBLE are not valid in glTF 2.0 accessors we read
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return 4;
+        default:
+            return 0;  // INT and DOUBLE are not valid in glTF 2.0 accessors we read
     }
 }
 
@@ -346,7 +375,8 @@ double readComponent(const unsigned char* p, int component_type, bool normalized
             std::memcpy(&v, p, 4);
             return v;
         }
-        default: return 0.0;
+        default:
+            return 0.0;
     }
 }
 
@@ -373,9 +403,12 @@ bool layoutAllowed(Use use, int type, int component_type, bool normalized) {
 
 const char* layoutExpected(Use use) {
     switch (use) {
-        case Use::Vec3Float: return "VEC3 of FLOAT";
-        case Use::Texcoord: return "VEC2 of FLOAT, or of normalized UNSIGNED_BYTE / UNSIGNED_SHORT";
-        case Use::Indices: return "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT";
+        case Use::Vec3Float:
+            return "VEC3 of FLOAT";
+        case Use::Texcoord:
+            return "VEC2 of FLOAT, or of normalized UNSIGNED_BYTE / UNSIGNED_SHORT";
+        case Use::Indices:
+            return "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT";
     }
     return "";
 }
@@ -388,13 +421,13 @@ struct Bytes {
 };
 
 class Converter {
-public:
+  public:
     Converter(const tinygltf::Model& model, Scene* scene, std::vector<std::string>* warnings)
         : model_(model), scene_(*scene), warnings_(*warnings) {}
 
     void run();
 
-private:
+  private:
     // Validates bufferView `index` and the buffer it lies in; `who` names the referrer.
     Bytes bufferView(int index, const std::string& who) const {
         if (index < 0 || static_cast<std::size_t>(index) >= model_.bufferViews.size()) {
@@ -432,13 +465,18 @@ private:
         const std::size_t limit = use == Use::Indices ? kMaxIndices : kMaxVertices;
         if (acc.count == 0) fail(who + ": count is 0");
         if (acc.count > limit) {
-            fail(who + ": count " + std::to_string(acc.count) + " is over the limit of " + std::to_string(limit));
+            fail(who + ": count " + std::to_string(acc.count) + " is over the limit of " +
+                 std::to_string(limit));
         }
         const std::size_t components = static_cast<std::size_t>(componentCount(use));
         const std::size_t comp_size = componentSize(acc.componentType);
         const std::size_t element = comp_size * components;
         out->assign(acc.count * components, T{});
 
+        if (acc.bufferView == -1 && acc.count > kMaxUnbackedCount) {
+            fail(who + ": count " + std::to_string(acc.count) +
+                 " without a bufferView is over the limit of " + std::to_string(kMaxUnbackedCount));
+        }
         if (acc.bufferView != -1) {
             const Bytes view = bufferView(acc.bufferView, who);
             const std::size_t declared =
@@ -446,7 +484,8 @@ private:
             if (declared != 0 && (declared < element || declared > 252 || declared % 4 != 0)) {
                 fail(who + ": byteStride " + std::to_string(declared) + " of bufferView " +
                      std::to_string(acc.bufferView) + " is invalid for " + std::to_string(element) +
-                     "-byte elements (must be 0, or a multiple of 4 in " + std::to_string(element) + "..252)");
+                     "-byte elements (must be 0, or a multiple of 4 in " + std::to_string(element) +
+                     "..252)");
             }
             const std::size_t stride = declared != 0 ? declared : element;
             // Both fit in 64 bits: count <= 150M, stride <= 252, offset checked against size first.
@@ -493,8 +532,10 @@ private:
         const Bytes idx_view = bufferView(sparse.indices.bufferView, who + " sparse indices");
         const Bytes val_view = bufferView(sparse.values.bufferView, who + " sparse values");
         const auto fits = [&](const Bytes& view, int offset, std::uint64_t bytes, const char* what) {
-            if (offset < 0) fail(who + ": sparse " + what + " byteOffset " + std::to_string(offset) + " is negative");
-            if (static_cast<std::size_t>(offset) > view.size || bytes > view.size - static_cast<std::size_t>(offset)) {
+            if (offset < 0)
+                fail(who + ": sparse " + what + " byteOffset " + std::to_string(offset) + " is negative");
+            if (static_cast<std::size_t>(offset) > view.size ||
+                bytes > view.size - static_cast<std::size_t>(offset)) {
                 fail(who + ": sparse " + what + " read bytes " +
                      byteRange(static_cast<std::uint64_t>(offset), bytes) + " of a bufferView which has " +
                      std::to_string(view.size) + " bytes");
@@ -578,7 +619,8 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
     const tinygltf::Mesh& src = model_.meshes[mesh_index];
     const tinygltf::Primitive& prim = src.primitives[prim_index];
     const std::string label = meshLabel(mesh_index);
-    const std::string where = label + (src.primitives.size() > 1 ? " primitive " + std::to_string(prim_index) : "");
+    const std::string where =
+        label + (src.primitives.size() > 1 ? " primitive " + std::to_string(prim_index) : "");
 
     Mesh mesh;
     mesh.name = src.name.empty() ? "mesh" + std::to_string(mesh_index) : src.name;
@@ -603,7 +645,8 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
 
     const int normal_accessor = attribute("NORMAL");
     if (prim.attributes.count("NORMAL") != 0) {
-        const std::size_t n = readAccessor(normal_accessor, std::string("NORMAL of ") + label, Use::Vec3Float, &values);
+        const std::size_t n =
+            readAccessor(normal_accessor, std::string("NORMAL of ") + label, Use::Vec3Float, &values);
         if (n != vertex_count) {
             fail(where + ": NORMAL has " + std::to_string(n) + " elements but POSITION has " +
                  std::to_string(vertex_count));
@@ -619,8 +662,8 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
     }
 
     if (prim.attributes.count("TEXCOORD_0") != 0) {
-        const std::size_t n =
-            readAccessor(attribute("TEXCOORD_0"), std::string("TEXCOORD_0 of ") + label, Use::Texcoord, &values);
+        const std::size_t n = readAccessor(attribute("TEXCOORD_0"), std::string("TEXCOORD_0 of ") + label,
+                                           Use::Texcoord, &values);
         if (n != vertex_count) {
             fail(where + ": TEXCOORD_0 has " + std::to_string(n) + " elements but POSITION has " +
                  std::to_string(vertex_count));
@@ -701,7 +744,8 @@ void Converter::convertMaterials() {
         if (std::isfinite(color.r + color.g + color.b + color.a)) {
             m.base_color = color;
         } else {
-            warnings_.push_back("material " + std::to_string(i) + ": baseColorFactor is not 4 finite numbers; white used");
+            warnings_.push_back("material " + std::to_string(i) +
+                                ": baseColorFactor is not 4 finite numbers; white used");
         }
         scene_.materials.push_back(std::move(m));
     }
@@ -709,7 +753,8 @@ void Converter::convertMaterials() {
 
 glm::mat4 Converter::localMatrix(std::size_t node_index) const {
     const glm::mat4 m = localMatrixUnchecked(node_index);
-    if (!finiteMatrix(m)) fail("node " + std::to_string(node_index) + ": its transform is too large for floats");
+    if (!finiteMatrix(m))
+        fail("node " + std::to_string(node_index) + ": its transform is too large for floats");
     return m;
 }
 
@@ -717,10 +762,12 @@ glm::mat4 Converter::localMatrixUnchecked(std::size_t node_index) const {
     const tinygltf::Node& node = model_.nodes[node_index];
     const std::string who = "node " + std::to_string(node_index);
     if (!node.matrix.empty()) {
-        if (node.matrix.size() != 16 || !finite(node.matrix)) fail(who + ": matrix must be 16 finite numbers");
+        if (node.matrix.size() != 16 || !finite(node.matrix))
+            fail(who + ": matrix must be 16 finite numbers");
         glm::mat4 m(1.0f);
         for (int c = 0; c < 4; ++c) {
-            for (int r = 0; r < 4; ++r) m[c][r] = static_cast<float>(node.matrix[static_cast<std::size_t>(c * 4 + r)]);
+            for (int r = 0; r < 4; ++r)
+                m[c][r] = static_cast<float>(node.matrix[static_cast<std::size_t>(c * 4 + r)]);
         }
         return m;  // glTF stores column-major, as glm does
     }
@@ -729,11 +776,13 @@ glm::mat4 Converter::localMatrixUnchecked(std::size_t node_index) const {
         if (node.translation.size() != 3 || !finite(node.translation)) {
             fail(who + ": translation must be 3 finite numbers");
         }
-        m = glm::translate(m, glm::vec3(static_cast<float>(node.translation[0]), static_cast<float>(node.translation[1]),
-                                        static_cast<float>(node.translation[2])));
+        m = glm::translate(
+            m, glm::vec3(static_cast<float>(node.translation[0]), static_cast<float>(node.translation[1]),
+                         static_cast<float>(node.translation[2])));
     }
     if (!node.rotation.empty()) {
-        if (node.rotation.size() != 4 || !finite(node.rotation)) fail(who + ": rotation must be 4 finite numbers");
+        if (node.rotation.size() != 4 || !finite(node.rotation))
+            fail(who + ": rotation must be 4 finite numbers");
         // glTF quaternions are (x, y, z, w); glm's constructor takes w first.
         glm::quat q(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
                     static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
@@ -797,7 +846,8 @@ void Converter::walkNodes() {
         }
         visitNode(node_index, world);
         const auto& children = model_.nodes[node_index].children;
-        for (auto child = children.rbegin(); child != children.rend(); ++child) stack.emplace_back(*child, world);
+        for (auto child = children.rbegin(); child != children.rend(); ++child)
+            stack.emplace_back(*child, world);
     }
 }
 
@@ -815,14 +865,19 @@ void Converter::visitNode(std::size_t node_index, const glm::mat4& world) {
             const int mode = prims[p].mode;
             if (mode != -1 && mode != TINYGLTF_MODE_TRIANGLES) {
                 warnings_.push_back(meshLabel(mesh_index) + " primitive " + std::to_string(p) + ": mode " +
-                                    std::to_string(mode) + " skipped; only triangle lists (mode 4) are drawn");
+                                    std::to_string(mode) +
+                                    " skipped; only triangle lists (mode 4) are drawn");
                 continue;
             }
             const int material = prims[p].material;
-            if (material < -1 || (material >= 0 && static_cast<std::size_t>(material) >= model_.materials.size())) {
+            if (material < -1 ||
+                (material >= 0 && static_cast<std::size_t>(material) >= model_.materials.size())) {
                 fail(meshLabel(mesh_index) + " primitive " + std::to_string(p) + ": material " +
                      std::to_string(material) + " does not exist (the file has " +
                      std::to_string(model_.materials.size()) + " materials)");
+            }
+            if (scene_.draw_items.size() >= kMaxDrawItems) {
+                fail("the scene has more than " + std::to_string(kMaxDrawItems) + " draw items");
             }
             DrawItem item;
             item.node_name = node.name.empty() ? "node" + std::to_string(node_index) : node.name;
@@ -839,8 +894,8 @@ void Converter::visitNode(std::size_t node_index, const glm::mat4& world) {
         }
         const auto& cam = model_.cameras[static_cast<std::size_t>(node.camera)];
         if (cam.type != "perspective") {
-            warnings_.push_back(who + ": camera " + std::to_string(node.camera) + " is " + inQuotes(cam.type) +
-                                ", not perspective; ignored");
+            warnings_.push_back(who + ": camera " + std::to_string(node.camera) + " is " +
+                                inQuotes(cam.type) + ", not perspective; ignored");
         } else if (camera_node_ < 0) {
             camera_node_ = static_cast<int>(node_index);
             camera_world_ = world;
@@ -882,7 +937,8 @@ void Converter::addLight(std::size_t node_index, const glm::mat4& world) {
         light.color = glm::vec3(static_cast<float>(src.color[0]), static_cast<float>(src.color[1]),
                                 static_cast<float>(src.color[2]));
     }
-    if (!std::isfinite(src.intensity) || src.intensity < 0.0) fail(lwho + ": intensity must be finite and >= 0");
+    if (!std::isfinite(src.intensity) || src.intensity < 0.0)
+        fail(lwho + ": intensity must be finite and >= 0");
     if (!std::isfinite(src.range) || src.range < 0.0) fail(lwho + ": range must be finite and >= 0");
     light.intensity = static_cast<float>(src.intensity);
     light.range = static_cast<float>(src.range);
@@ -900,11 +956,41 @@ void Converter::addLight(std::size_t node_index, const glm::mat4& world) {
 void Converter::computeBounds() {
     glm::vec3 lo(std::numeric_limits<float>::max());
     glm::vec3 hi(std::numeric_limits<float>::lowest());
+    std::size_t work = 0;
     for (const DrawItem& item : scene_.draw_items) {
-        for (const glm::vec3& p : scene_.meshes[static_cast<std::size_t>(item.mesh)].positions) {
-            const glm::vec3 w = glm::vec3(item.world * glm::vec4(p, 1.0f));
-            lo = glm::min(lo, w);
-            hi = glm::max(hi, w);
+        work += scene_.meshes[static_cast<std::size_t>(item.mesh)].positions.size();
+    }
+    if (work <= kExactBoundsBudget) {
+        // Tight bounds: every vertex of every item in world space.
+        for (const DrawItem& item : scene_.draw_items) {
+            for (const glm::vec3& p : scene_.meshes[static_cast<std::size_t>(item.mesh)].positions) {
+                const glm::vec3 w = glm::vec3(item.world * glm::vec4(p, 1.0f));
+                lo = glm::min(lo, w);
+                hi = glm::max(hi, w);
+            }
+        }
+    } else {
+        // A big mesh instanced many times: the corners of each mesh's own box, transformed.
+        // Looser for rotated items, but linear in the number of items.
+        std::vector<std::pair<glm::vec3, glm::vec3>> boxes;
+        for (const Mesh& mesh : scene_.meshes) {
+            glm::vec3 mlo(std::numeric_limits<float>::max()), mhi(std::numeric_limits<float>::lowest());
+            for (const glm::vec3& p : mesh.positions) {
+                mlo = glm::min(mlo, p);
+                mhi = glm::max(mhi, p);
+            }
+            boxes.emplace_back(mlo, mhi);
+        }
+        for (const DrawItem& item : scene_.draw_items) {
+            const auto& box = boxes[static_cast<std::size_t>(item.mesh)];
+            for (int corner = 0; corner < 8; ++corner) {
+                const glm::vec3 p((corner & 1) ? box.second.x : box.first.x,
+                                  (corner & 2) ? box.second.y : box.first.y,
+                                  (corner & 4) ? box.second.z : box.first.z);
+                const glm::vec3 w = glm::vec3(item.world * glm::vec4(p, 1.0f));
+                lo = glm::min(lo, w);
+                hi = glm::max(hi, w);
+            }
         }
     }
     if (scene_.draw_items.empty()) {
@@ -979,10 +1065,10 @@ void Converter::placeCamera() {
 // infinite or NaN field would only fail later, in the renderer, with a black image.
 void Converter::checkCamera() const {
     const Camera& cam = scene_.camera;
-    if (!finiteVec(cam.position) || !finiteVec(cam.target) || !finiteVec(cam.up) || !std::isfinite(cam.fov_y_deg) ||
-        !std::isfinite(cam.z_near) || !std::isfinite(cam.z_far) || !std::isfinite(cam.file_aspect) ||
-        !(cam.z_near > 0.0f) ||
-        !(cam.z_far > cam.z_near) || cam.position == cam.target) {
+    if (!finiteVec(cam.position) || !finiteVec(cam.target) || !finiteVec(cam.up) ||
+        !std::isfinite(cam.fov_y_deg) || !std::isfinite(cam.z_near) || !std::isfinite(cam.z_far) ||
+        !std::isfinite(cam.file_aspect) || !(cam.z_near > 0.0f) || !(cam.z_far > cam.z_near) ||
+        cam.position == cam.target) {
         fail(std::string(scene_.has_camera ? "the file's camera" : "the default camera framing the scene") +
              " is not finite or not valid (are the scene's coordinates within float range?)");
     }
@@ -995,7 +1081,8 @@ void Converter::run() {
     for (const std::string& ext : model_.extensionsRequired) {
         // Material extensions only change shading the labs replace anyway; anything that changes
         // geometry (Draco, quantization, ...) would be read wrongly, so it is refused.
-        if (ext != "KHR_lights_punctual" && ext.rfind("KHR_materials_", 0) != 0 && ext != "KHR_texture_transform") {
+        if (ext != "KHR_lights_punctual" && ext.rfind("KHR_materials_", 0) != 0 &&
+            ext != "KHR_texture_transform") {
             fail("requires extension " + inQuotes(ext) + ", which shaderlab does not support");
         }
     }
@@ -1043,10 +1130,12 @@ SceneLoadResult loadGltfScene(const std::string& path, Scene* out) {
             const std::size_t length = checkGlbLayout(bytes, &result.warnings);
             const std::size_t json_length = readU32(bytes, 12);
             checkJson(bytes.data() + 20, bytes.data() + 20 + json_length);
-            loaded = gltf.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+            loaded = gltf.LoadBinaryFromMemory(&model, &err, &warn,
+                                               reinterpret_cast<const unsigned char*>(bytes.data()),
                                                static_cast<unsigned int>(length), guard.folder);
         } else {
-            if (ext == ".glb" || ext == ".GLB") fail("not a GLB file: it does not start with the 'glTF' magic");
+            if (ext == ".glb" || ext == ".GLB")
+                fail("not a GLB file: it does not start with the 'glTF' magic");
             checkJson(bytes.data(), bytes.data() + bytes.size());
             loaded = gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
                                               static_cast<unsigned int>(bytes.size()), guard.folder);
@@ -1056,8 +1145,8 @@ SceneLoadResult loadGltfScene(const std::string& path, Scene* out) {
         if (!guard.refusal.empty()) fail(guard.refusal);
         if (!loaded) {
             if (!guard.missing.empty()) {
-                fail("missing file " + inQuotes(guard.missing) + " (referenced by a buffer URI, looked for in " +
-                     guard.folder + ")");
+                fail("missing file " + inQuotes(guard.missing) +
+                     " (referenced by a buffer URI, looked for in " + guard.folder + ")");
             }
             fail("tinygltf: " + (err.empty() ? std::string("load failed") : joinLines(err)));
         }

@@ -10,8 +10,6 @@
 // with byteStride (torus), a .glb (torus_knot), a mesh without NORMAL (cube_no_normals), a
 // non-uniform node scale (nonuniform_scale).
 // It does not write textures, animations or anything the labs do not draw.
-#include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -21,6 +19,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <string>
 #include <system_error>
@@ -56,7 +56,8 @@ void orientTriangles(Geometry* g) {
         const Vertex& b = g->vertices[g->indices[t + 1]];
         const Vertex& c = g->vertices[g->indices[t + 2]];
         const glm::dvec3 face = glm::cross(b.position - a.position, c.position - a.position);
-        if (glm::dot(face, a.normal + b.normal + c.normal) < 0.0) std::swap(g->indices[t + 1], g->indices[t + 2]);
+        if (glm::dot(face, a.normal + b.normal + c.normal) < 0.0)
+            std::swap(g->indices[t + 1], g->indices[t + 2]);
     }
 }
 
@@ -67,7 +68,8 @@ Geometry uvSphere(double radius, int segments, int rings) {
         const double theta = kPi * i / rings;
         for (int j = 0; j <= segments; ++j) {
             const double phi = 2.0 * kPi * j / segments;
-            const glm::dvec3 n(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
+            const glm::dvec3 n(std::sin(theta) * std::sin(phi), std::cos(theta),
+                               std::sin(theta) * std::cos(phi));
             g.vertices.push_back({radius * n, n, glm::dvec2(double(j) / segments, double(i) / rings)});
         }
     }
@@ -91,7 +93,8 @@ Geometry torus(double major, double minor, int segments, int sides) {
             const double v = 2.0 * kPi * j / sides;
             const glm::dvec3 n(std::cos(v) * std::cos(u), std::sin(v), std::cos(v) * std::sin(u));
             const glm::dvec3 centre(major * std::cos(u), 0.0, major * std::sin(u));
-            g.vertices.push_back({centre + minor * n, n, glm::dvec2(double(i) / segments, double(j) / sides)});
+            g.vertices.push_back(
+                {centre + minor * n, n, glm::dvec2(double(i) / segments, double(j) / sides)});
         }
     }
     const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (sides + 1) + j); };
@@ -124,7 +127,8 @@ Geometry torusKnot(int p, int q, double scale, double tube, int segments, int si
         for (int j = 0; j <= sides; ++j) {
             const double v = 2.0 * kPi * j / sides;
             const glm::dvec3 n = std::cos(v) * normal + std::sin(v) * binormal;
-            g.vertices.push_back({scale * pos + tube * n, n, glm::dvec2(double(i) / segments, double(j) / sides)});
+            g.vertices.push_back(
+                {scale * pos + tube * n, n, glm::dvec2(double(i) / segments, double(j) / sides)});
         }
     }
     const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (sides + 1) + j); };
@@ -185,7 +189,7 @@ enum class Layout { Separate, Interleaved };
 
 // Accumulates one glTF model with a single buffer.
 class SceneWriter {
-public:
+  public:
     SceneWriter() {
         model_.asset.version = "2.0";
         model_.asset.generator = "shaderlab_make_scenes";
@@ -269,7 +273,8 @@ public:
     int addMeshNode(const std::string& name, int mesh, const glm::dvec3& translation = glm::dvec3(0.0)) {
         const int n = addNode(name);
         node(n).mesh = mesh;
-        if (translation != glm::dvec3(0.0)) node(n).translation = {translation.x, translation.y, translation.z};
+        if (translation != glm::dvec3(0.0))
+            node(n).translation = {translation.x, translation.y, translation.z};
         return n;
     }
 
@@ -315,14 +320,15 @@ public:
         const bool ok = fs::file_size(file, ec) > 0 && !ec &&
                         (binary || fs::file_size(dir / buffer.uri, ec) == buffer.data.size());
         if (!ok || ec) {
-            std::fprintf(stderr, "shaderlab_make_scenes: %s was not written completely\n", file.string().c_str());
+            std::fprintf(stderr, "shaderlab_make_scenes: %s was not written completely\n",
+                         file.string().c_str());
             return false;
         }
         std::printf("wrote %s\n", file.string().c_str());
         return true;
     }
 
-private:
+  private:
     // Six decimals keep the JSON readable; "+ 0.0" turns -0 into 0.
     static double round6(double v) { return std::round(v * 1e6) / 1e6 + 0.0; }
 
@@ -416,8 +422,8 @@ private:
                                  : component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
                                                                                             : 4;
         if (vertex_count > (std::uint64_t{1} << (8 * size))) {
-            std::fprintf(stderr, "shaderlab_make_scenes: %zu vertices do not fit %zu-byte indices\n", vertex_count,
-                         size);
+            std::fprintf(stderr, "shaderlab_make_scenes: %zu vertices do not fit %zu-byte indices\n",
+                         vertex_count, size);
             std::exit(1);
         }
         std::vector<unsigned char> bytes(indices.size() * size);
@@ -493,7 +499,8 @@ bool writeCube(const fs::path& dir, const std::string& name, bool normals) {
 bool writeNonuniformScale(const fs::path& dir) {
     SceneWriter w;
     const int mat = w.addMaterial("violet", {0.7, 0.4, 0.8, 1.0});
-    const int n = w.addMeshNode("ellipsoid", w.addMesh("sphere", uvSphere(1.0, 64, 32), mat, kUShort, Layout::Separate));
+    const int n = w.addMeshNode("ellipsoid",
+                                w.addMesh("sphere", uvSphere(1.0, 64, 32), mat, kUShort, Layout::Separate));
     w.node(n).scale = {2.0, 0.5, 1.0};
     const glm::dquat q = glm::angleAxis(25.0 * kPi / 180.0, glm::dvec3(0.0, 0.0, 1.0));
     w.node(n).rotation = {0.0, 0.0, std::round(q.z * 1e6) / 1e6, std::round(q.w * 1e6) / 1e6};
@@ -508,7 +515,8 @@ bool writeGroundPlane(const fs::path& dir) {
     const int gold = w.addMaterial("gold", {0.9, 0.7, 0.2, 1.0});
     w.addMeshNode("ground", w.addMesh("ground", plane(8.0, 8), grey, kUByte, Layout::Separate));
     // The knot stands upright; its lowest point is 3 * 0.42 + 0.17 = 1.43 below its centre.
-    w.addMeshNode("torus_knot", w.addMesh("torus_knot", knot(), gold, kUInt, Layout::Separate), {0.0, 1.45, 0.0});
+    w.addMeshNode("torus_knot", w.addMesh("torus_knot", knot(), gold, kUInt, Layout::Separate),
+                  {0.0, 1.45, 0.0});
     w.addCamera({0.0, 2.6, 6.5}, {0.0, 1.0, 0.0});
     w.addPointLight(kKeyLight, kWhite, 1.0);
     w.addDirectionalLight({0.3, -1.0, -0.5}, {0.4, 0.5, 0.8}, 0.5);
@@ -531,7 +539,8 @@ int main(int argc, char** argv) {
         return 1;
     }
     using namespace shaderlab;
-    const bool ok = writeSphere(dir) && writeTorus(dir) && writeTorusKnot(dir) && writeCube(dir, "cube_flat", true) &&
-                    writeCube(dir, "cube_no_normals", false) && writeNonuniformScale(dir) && writeGroundPlane(dir);
+    const bool ok = writeSphere(dir) && writeTorus(dir) && writeTorusKnot(dir) &&
+                    writeCube(dir, "cube_flat", true) && writeCube(dir, "cube_no_normals", false) &&
+                    writeNonuniformScale(dir) && writeGroundPlane(dir);
     return ok ? 0 : 1;
 }
