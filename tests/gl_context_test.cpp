@@ -31,6 +31,32 @@ TEST(GlContextNames, ParseBackend) {
     EXPECT_FALSE(shaderlab::parseBackend("vulkan", &b));
 }
 
+// A context that is too old is refused with a message naming the version it has. The fake
+// driver answers only glGetString, as an OpenGL 2.1 implementation would.
+const GLubyte* fakeGetString(GLenum name) {
+    switch (name) {
+        case GL_VERSION: return reinterpret_cast<const GLubyte*>("2.1 Mesa 9.0");
+        case GL_RENDERER: return reinterpret_cast<const GLubyte*>("fake renderer");
+        case GL_VENDOR: return reinterpret_cast<const GLubyte*>("fake vendor");
+        default: return reinterpret_cast<const GLubyte*>("");
+    }
+}
+
+shaderlab::GlProc fakeGetProc(const char* name) {
+    if (std::string(name) == "glGetString") return reinterpret_cast<shaderlab::GlProc>(&fakeGetString);
+    return nullptr;
+}
+
+TEST(GlContextVersion, TooOldContextNamesTheVersionFound) {
+    shaderlab::GlInfo info;
+    std::string error;
+    EXPECT_FALSE(shaderlab::loadGl(&fakeGetProc, &info, &error));
+    EXPECT_EQ(info.major, 2);
+    EXPECT_EQ(info.minor, 1);
+    EXPECT_NE(error.find("3.3"), std::string::npos) << error;
+    EXPECT_NE(error.find("2.1 Mesa 9.0"), std::string::npos) << error;
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, GlContextTest, ::testing::Values(Backend::OSMesa, Backend::Egl),
                          [](const auto& param_info) { return std::string(shaderlab::backendName(param_info.param)); });
 

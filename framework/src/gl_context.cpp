@@ -164,8 +164,10 @@ bool parseBackend(const std::string& name, Backend* out) {
 const char* backendName(Backend backend) { return backend == Backend::OSMesa ? "osmesa" : "egl"; }
 
 bool loadGl(GetProcFn get_proc, GlInfo* info, std::string* error) {
-    if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(get_proc))) {
-        *error = "cannot load OpenGL entry points";
+    // gladLoadGL parses GL_VERSION itself and returns it; 0 means not even glGetString works.
+    const int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(get_proc));
+    if (!version || !glad_glGetString) {
+        *error = "cannot load OpenGL entry points (no usable glGetString)";
         return false;
     }
     auto str = [](GLenum e) {
@@ -175,8 +177,8 @@ bool loadGl(GetProcFn get_proc, GlInfo* info, std::string* error) {
     info->vendor = str(GL_VENDOR);
     info->renderer = str(GL_RENDERER);
     info->version = str(GL_VERSION);
-    glGetIntegerv(GL_MAJOR_VERSION, &info->major);
-    glGetIntegerv(GL_MINOR_VERSION, &info->minor);
+    info->major = GLAD_VERSION_MAJOR(version);
+    info->minor = GLAD_VERSION_MINOR(version);
     if (info->major < kMinMajor || (info->major == kMinMajor && info->minor < kMinMinor)) {
         *error = "OpenGL " + versionString(kMinMajor, kMinMinor) + " core is required, found " + info->version +
                  " (" + info->renderer + ")";

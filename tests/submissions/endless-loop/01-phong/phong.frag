@@ -38,10 +38,11 @@ void main() {
         float highlight = pow(max(dot(r, v), 0.0), u_shininess);
         color += u_light_color[i] * (u_diffuse * n_dot_l * u_base_color.rgb + u_specular * highlight);
     }
-    // An endless loop the compiler cannot prove endless.
-    float k = 0.0;
-    while (k >= 0.0) {
-        k += u_ambient;
+    // Endless in practice: four billion steps per fragment, each depending on the last, so the
+    // compiler can neither drop the loop nor compute its result in closed form.
+    float x = u_ambient;
+    for (uint i = 0u; i < 0xFFFFFFFFu; ++i) {
+        x = fract(x * 1.6180339 + 0.5);
     }
-    o_color = vec4(color + k, 1.0);
+    o_color = vec4(color + x * 1e-6, 1.0);
 }
