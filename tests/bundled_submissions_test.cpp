@@ -158,6 +158,52 @@ TEST(CliExitCodes, SymlinkOutOfTheSubmissionIsRefused) {
     EXPECT_NE(report["labs"][0]["message"].get<std::string>().find("outside"), std::string::npos);
 }
 
+// A two-pass lab (lit scene, then a fullscreen greyscale pass reading it): the report names the
+// first pass that goes wrong, and writes pictures of the intermediate pass too.
+TEST(CliMultiPass, ReportNamesTheFirstWrongPass) {
+    const fs::path data = fs::path(SHADERLAB_SOURCE_DIR) / "tests/data/multipass";
+    const fs::path labs = scratch("multipass_labs");
+    fs::create_directories(labs);
+    fs::copy(fs::path(SHADERLAB_SOURCE_DIR) / "labs/scenes", labs / "scenes", fs::copy_options::recursive);
+    fs::copy(data / "labs/90-two-pass", labs / "90-two-pass", fs::copy_options::recursive);
+    const struct {
+        const char* submission;
+        const char* status;
+        const char* first_failing_pass;
+    } cases[] = {{"reference", "passed", nullptr}, {"wrong-first-pass", "failed", "scene"},
+                 {"wrong-second-pass", "failed", "grey"}};
+    for (const auto& c : cases) {
+        const fs::path out = scratch(std::string("multipass_") + c.submission);
+        const CliRun run = runCli("grade " + (data / c.submission).string() + " --labs " + labs.string() +
+                                  " --reference " + (data / "reference").string() + " --out " + out.string());
+        ASSERT_EQ(run.exit_code, 0) << run.output;
+        const json report = readJson(out / "report.json");
+        const json& scene = report["labs"][0]["scenes"][0];
+        EXPECT_EQ(scene["status"], c.status) << c.submission << "\n" << scene.dump(2);
+        if (c.first_failing_pass) {
+            EXPECT_EQ(scene["first_failing_pass"], c.first_failing_pass) << c.submission;
+        } else {
+            EXPECT_TRUE(scene["first_failing_pass"].is_null()) << c.submission;
+        }
+        ASSERT_EQ(scene["passes"].size(), 2u);
+        EXPECT_TRUE(fs::is_regular_file(out / scene["passes"][0]["images"]["student"].get<std::string>()));
+    }
+}
+
+// Without the reference solution the stored goldens grade: the reference passes against them.
+TEST(CliGoldens, ReferencePassesAgainstGoldens) {
+    const fs::path out = scratch("goldens_grade");
+    const std::string ref = (fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions").string();
+    const CliRun run = runCli("grade " + ref + " --no-reference --out " + out.string() + " --lab 01-phong");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const json report = readJson(out / "report.json");
+    EXPECT_EQ(report["labs"][0]["status"], "passed");
+    EXPECT_EQ(report["labs"][0]["reference_source"], "goldens");
+    const CliRun starter = runCli("grade " + (fs::path(SHADERLAB_SOURCE_DIR) / "labs").string() +
+                                  " --no-reference --out " + out.string() + " --lab 01-phong");
+    EXPECT_EQ(readJson(out / "report.json")["labs"][0]["status"], "failed") << starter.output;
+}
+
 TEST(CliCompare, JsonForIdenticalAndDifferentImages) {
     const fs::path out = scratch("compare");
     const std::string ref = (fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions").string();
