@@ -129,6 +129,29 @@ TEST_F(PhongRender, StarterDiffersAndReferenceIsRepeatable) {
     EXPECT_EQ(a.scenes[0].passes[0].coverage, starter.scenes[0].passes[0].coverage);
 }
 
+// The float images themselves, before any PNG rounding, agree between the two backends.
+TEST(PhongBackends, OsmesaAndEglAgreeInFloat) {
+    std::string err;
+    const shaderlab::LabSpec spec = phongSpec();
+    ASSERT_NE(shaderlab::testing::sharedContext(Backend::OSMesa, &err), nullptr) << err;
+    const auto a = shaderlab::renderLab(spec, kReference);
+    ASSERT_NE(shaderlab::testing::sharedContext(Backend::Egl, &err), nullptr) << err;
+    const auto b = shaderlab::renderLab(spec, kReference);
+    ASSERT_EQ(a.status, shaderlab::RenderStatus::Ok) << a.message;
+    ASSERT_EQ(b.status, shaderlab::RenderStatus::Ok) << b.message;
+    ASSERT_EQ(a.scenes.size(), b.scenes.size());
+    float max_diff = 0.0f;
+    for (std::size_t s = 0; s < a.scenes.size(); ++s) {
+        const auto& pa = a.scenes[s].passes.back().color.pixels;
+        const auto& pb = b.scenes[s].passes.back().color.pixels;
+        ASSERT_EQ(pa.size(), pb.size());
+        for (std::size_t i = 0; i < pa.size(); ++i) max_diff = std::max(max_diff, std::fabs(pa[i] - pb[i]));
+    }
+    std::printf("largest per-channel difference osmesa vs egl over %zu scenes: %g\n", a.scenes.size(),
+                static_cast<double>(max_diff));
+    EXPECT_LE(max_diff, 1.0f / 512.0f);  // well inside one 8-bit step
+}
+
 // Through the program, in fresh processes: thread count and backend must not change a byte.
 std::string renderToDir(const std::string& env, const std::string& backend, const std::string& name) {
     const fs::path out = fs::temp_directory_path() / ("shaderlab_determinism_" + name);
