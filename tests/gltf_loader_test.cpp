@@ -179,6 +179,7 @@ TEST_P(GltfBundledScene, LoadsWithCameraLightsAndSaneGeometry) {
 
 INSTANTIATE_TEST_SUITE_P(Gltf, GltfBundledScene,
                          ::testing::Values(BundledCase{"sphere.gltf", 1, 1, 1, true},
+                                           BundledCase{"sphere_low_poly.gltf", 1, 1, 1, true},
                                            BundledCase{"torus.gltf", 1, 1, 1, true},
                                            BundledCase{"torus_knot.glb", 1, 1, 1, true},
                                            BundledCase{"cube_flat.gltf", 1, 1, 1, true},
@@ -197,7 +198,7 @@ TEST(GltfBundledScenes, EveryBundledSceneIsCovered) {
         const auto ext = e.path().extension();
         if (ext == ".gltf" || ext == ".glb") files.insert(e.path().filename().string());
     }
-    const std::set<std::string> tested = {"sphere.gltf",      "torus.gltf",           "torus_knot.glb",
+    const std::set<std::string> tested = {"sphere.gltf",      "sphere_low_poly.gltf", "torus.gltf",           "torus_knot.glb",
                                           "cube_flat.gltf",   "cube_no_normals.gltf", "nonuniform_scale.gltf",
                                           "ground_plane.gltf"};
     EXPECT_EQ(files, tested) << "add new scenes to GltfBundledScene";

@@ -464,6 +464,17 @@ bool writeSphere(const fs::path& dir) {
     return w.write(dir, "sphere", false);
 }
 
+// The same sphere coarsely tessellated (12 x 6): per-vertex (Gouraud) lighting loses or
+// smears the highlight inside its large triangles, while per-fragment lighting does not.
+bool writeLowPolySphere(const fs::path& dir) {
+    SceneWriter w;
+    const int mat = w.addMaterial("red_clay", {0.8, 0.3, 0.2, 1.0});
+    w.addMeshNode("sphere", w.addMesh("sphere", uvSphere(1.0, 12, 6), mat, kUByte, Layout::Separate));
+    w.addCamera({0.0, 0.8, 3.6}, {0.0, 0.0, 0.0});
+    w.addPointLight(kKeyLight, kWhite, 1.0);
+    return w.write(dir, "sphere_low_poly", false);
+}
+
 bool writeTorus(const fs::path& dir) {
     SceneWriter w;
     const int mat = w.addMaterial("teal", {0.2, 0.6, 0.8, 1.0});
@@ -539,7 +550,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     using namespace shaderlab;
-    const bool ok = writeSphere(dir) && writeTorus(dir) && writeTorusKnot(dir) &&
+    const bool ok = writeSphere(dir) && writeLowPolySphere(dir) && writeTorus(dir) && writeTorusKnot(dir) &&
                     writeCube(dir, "cube_flat", true) && writeCube(dir, "cube_no_normals", false) &&
                     writeNonuniformScale(dir) && writeGroundPlane(dir);
     return ok ? 0 : 1;
