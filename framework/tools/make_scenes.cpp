@@ -455,24 +455,17 @@ Geometry knot() { return torusKnot(2, 3, 0.42, 0.17, 256, 24); }
 const glm::dvec3 kWhite(1.0, 1.0, 1.0);
 const glm::dvec3 kKeyLight(3.0, 4.0, 5.0);  // above, right and in front of the subject
 
-bool writeSphere(const fs::path& dir) {
+// The red sphere, finely tessellated ("sphere") and coarsely ("sphere_low_poly", 12 x 6): on the
+// coarse one per-vertex (Gouraud) lighting loses or smears the highlight inside its large
+// triangles, while per-fragment lighting does not.
+bool writeSphere(const fs::path& dir, const std::string& name, int segments, int rings, int index_type) {
     SceneWriter w;
     const int mat = w.addMaterial("red_clay", {0.8, 0.3, 0.2, 1.0});
-    w.addMeshNode("sphere", w.addMesh("sphere", uvSphere(1.0, 64, 32), mat, kUShort, Layout::Separate));
+    w.addMeshNode("sphere",
+                  w.addMesh("sphere", uvSphere(1.0, segments, rings), mat, index_type, Layout::Separate));
     w.addCamera({0.0, 0.8, 3.6}, {0.0, 0.0, 0.0});
     w.addPointLight(kKeyLight, kWhite, 1.0);
-    return w.write(dir, "sphere", false);
-}
-
-// The same sphere coarsely tessellated (12 x 6): per-vertex (Gouraud) lighting loses or
-// smears the highlight inside its large triangles, while per-fragment lighting does not.
-bool writeLowPolySphere(const fs::path& dir) {
-    SceneWriter w;
-    const int mat = w.addMaterial("red_clay", {0.8, 0.3, 0.2, 1.0});
-    w.addMeshNode("sphere", w.addMesh("sphere", uvSphere(1.0, 12, 6), mat, kUByte, Layout::Separate));
-    w.addCamera({0.0, 0.8, 3.6}, {0.0, 0.0, 0.0});
-    w.addPointLight(kKeyLight, kWhite, 1.0);
-    return w.write(dir, "sphere_low_poly", false);
+    return w.write(dir, name, false);
 }
 
 bool writeTorus(const fs::path& dir) {
@@ -550,8 +543,9 @@ int main(int argc, char** argv) {
         return 1;
     }
     using namespace shaderlab;
-    const bool ok = writeSphere(dir) && writeLowPolySphere(dir) && writeTorus(dir) && writeTorusKnot(dir) &&
-                    writeCube(dir, "cube_flat", true) && writeCube(dir, "cube_no_normals", false) &&
-                    writeNonuniformScale(dir) && writeGroundPlane(dir);
+    const bool ok =
+        writeSphere(dir, "sphere", 64, 32, kUShort) && writeSphere(dir, "sphere_low_poly", 12, 6, kUByte) &&
+        writeTorus(dir) && writeTorusKnot(dir) && writeCube(dir, "cube_flat", true) &&
+        writeCube(dir, "cube_no_normals", false) && writeNonuniformScale(dir) && writeGroundPlane(dir);
     return ok ? 0 : 1;
 }
