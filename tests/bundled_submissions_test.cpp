@@ -1,18 +1,16 @@
 // End to end through the `shaderlab` program: every bundled submission (the reference
 // solutions, the starter code and the known mistakes of tests/submissions/) is graded and must
 // give what tests/submissions/expected.json says. Also pins the exit codes of the commands.
-#include <nlohmann/json.hpp>
-
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -96,7 +94,8 @@ TEST_P(BundledSubmission, GradesAsExpected) {
         if (want.contains("diagnostic")) {
             bool found = false;
             for (const json& d : lab["diagnostics"])
-                found = found || (d["file"] == want["diagnostic"]["file"] && d["line"] == want["diagnostic"]["line"]);
+                found = found ||
+                        (d["file"] == want["diagnostic"]["file"] && d["line"] == want["diagnostic"]["line"]);
             EXPECT_TRUE(found) << lab["diagnostics"].dump(2);
         }
     }
@@ -109,12 +108,13 @@ std::vector<std::string> bundledNames() {
     return names;
 }
 
-INSTANTIATE_TEST_SUITE_P(All, BundledSubmission, ::testing::ValuesIn(bundledNames()), [](const auto& param_info) {
-    std::string n = fs::path(param_info.param).filename().string();
-    for (char& c : n)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    return n;
-});
+INSTANTIATE_TEST_SUITE_P(All, BundledSubmission, ::testing::ValuesIn(bundledNames()),
+                         [](const auto& param_info) {
+                             std::string n = fs::path(param_info.param).filename().string();
+                             for (char& c : n)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return n;
+                         });
 
 // Every folder under tests/submissions/ is listed, so none is silently left out of CI.
 TEST(BundledSubmissions, EveryFolderHasAnExpectation) {
@@ -148,7 +148,8 @@ TEST(CliExitCodes, BadArgumentsAndMissingInputsExitTwo) {
 TEST(CliExitCodes, SymlinkOutOfTheSubmissionIsRefused) {
     const fs::path sub = scratch("symlink");
     fs::create_directories(sub / "01-phong");
-    fs::copy_file(fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions/01-phong/phong.vert", sub / "01-phong/phong.vert");
+    fs::copy_file(fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions/01-phong/phong.vert",
+                  sub / "01-phong/phong.vert");
     fs::create_symlink("/etc/passwd", sub / "01-phong/phong.frag");
     const fs::path out = scratch("symlink_out");
     const CliRun run = runCli("grade " + sub.string() + " --out " + out.string() + " --lab 01-phong");
@@ -170,7 +171,8 @@ TEST(CliMultiPass, ReportNamesTheFirstWrongPass) {
         const char* submission;
         const char* status;
         const char* first_failing_pass;
-    } cases[] = {{"reference", "passed", nullptr}, {"wrong-first-pass", "failed", "scene"},
+    } cases[] = {{"reference", "passed", nullptr},
+                 {"wrong-first-pass", "failed", "scene"},
                  {"wrong-second-pass", "failed", "grey"}};
     for (const auto& c : cases) {
         const fs::path out = scratch(std::string("multipass_") + c.submission);

@@ -1,8 +1,8 @@
 // Both headless backends give a usable core context of at least 3.3.
+#include <gtest/gtest.h>
+
 #include "gl_test_support.h"
 #include "shaderlab/gl.h"
-
-#include <gtest/gtest.h>
 
 namespace {
 
@@ -35,10 +35,14 @@ TEST(GlContextNames, ParseBackend) {
 // driver answers only glGetString, as an OpenGL 2.1 implementation would.
 const GLubyte* fakeGetString(GLenum name) {
     switch (name) {
-        case GL_VERSION: return reinterpret_cast<const GLubyte*>("2.1 Mesa 9.0");
-        case GL_RENDERER: return reinterpret_cast<const GLubyte*>("fake renderer");
-        case GL_VENDOR: return reinterpret_cast<const GLubyte*>("fake vendor");
-        default: return reinterpret_cast<const GLubyte*>("");
+        case GL_VERSION:
+            return reinterpret_cast<const GLubyte*>("2.1 Mesa 9.0");
+        case GL_RENDERER:
+            return reinterpret_cast<const GLubyte*>("fake renderer");
+        case GL_VENDOR:
+            return reinterpret_cast<const GLubyte*>("fake vendor");
+        default:
+            return reinterpret_cast<const GLubyte*>("");
     }
 }
 
@@ -58,6 +62,8 @@ TEST(GlContextVersion, TooOldContextNamesTheVersionFound) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, GlContextTest, ::testing::Values(Backend::OSMesa, Backend::Egl),
-                         [](const auto& param_info) { return std::string(shaderlab::backendName(param_info.param)); });
+                         [](const auto& param_info) {
+                             return std::string(shaderlab::backendName(param_info.param));
+                         });
 
 }  // namespace

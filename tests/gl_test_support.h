@@ -2,12 +2,12 @@
 // first use (creating and destroying Mesa contexts repeatedly is slow and adds nothing).
 #pragma once
 
-#include "shaderlab/gl_context.h"
-
 #include <gtest/gtest.h>
 
 #include <map>
 #include <memory>
+
+#include "shaderlab/gl_context.h"
 
 namespace shaderlab::testing {
 

@@ -198,9 +198,10 @@ TEST(GltfBundledScenes, EveryBundledSceneIsCovered) {
         const auto ext = e.path().extension();
         if (ext == ".gltf" || ext == ".glb") files.insert(e.path().filename().string());
     }
-    const std::set<std::string> tested = {"sphere.gltf",      "sphere_low_poly.gltf", "torus.gltf",           "torus_knot.glb",
-                                          "cube_flat.gltf",   "cube_no_normals.gltf", "nonuniform_scale.gltf",
-                                          "ground_plane.gltf"};
+    const std::set<std::string> tested = {
+        "sphere.gltf",           "sphere_low_poly.gltf", "torus.gltf",
+        "torus_knot.glb",        "cube_flat.gltf",       "cube_no_normals.gltf",
+        "nonuniform_scale.gltf", "ground_plane.gltf"};
     EXPECT_EQ(files, tested) << "add new scenes to GltfBundledScene";
 }
 

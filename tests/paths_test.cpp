@@ -11,11 +11,11 @@ namespace fs = std::filesystem;
 namespace {
 
 class PathsTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         root_ = fs::temp_directory_path() /
-                ("shaderlab_paths_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+                ("shaderlab_paths_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                 "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(root_);
         fs::create_directories(root_ / "sub" / "01-phong");
         std::ofstream(root_ / "sub" / "01-phong" / "phong.frag") << "void main() {}\n";

@@ -1,11 +1,6 @@
 // The Phong lab end to end: the reference solution rendered through the framework agrees with the
 // Phong model evaluated on the CPU by ray-casting the ideal sphere; rendering is deterministic,
 // independent of llvmpipe's thread count, and the same through both backends.
-#include "gl_test_support.h"
-#include "shaderlab/gltf_loader.h"
-#include "shaderlab/lab_spec.h"
-#include "shaderlab/renderer.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "gl_test_support.h"
+#include "shaderlab/gltf_loader.h"
+#include "shaderlab/lab_spec.h"
+#include "shaderlab/renderer.h"
 
 namespace fs = std::filesystem;
 
@@ -34,7 +34,7 @@ float uniformFloat(const shaderlab::UniformMap& m, const std::string& name) {
 }
 
 class PhongRender : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         std::string err;
         if (!shaderlab::testing::sharedContext(Backend::OSMesa, &err)) FAIL() << err;
@@ -93,7 +93,8 @@ TEST_F(PhongRender, ReferenceMatchesPhongModelOnCpu) {
             const float ndl = glm::dot(n, l);
             if (ndl > 0.0f) {
                 const glm::vec3 rr = -l - 2.0f * glm::dot(n, -l) * n;
-                expected += light_color * (kd * ndl * base + ks * std::pow(std::max(glm::dot(rr, v), 0.0f), shininess));
+                expected += light_color *
+                            (kd * ndl * base + ks * std::pow(std::max(glm::dot(rr, v), 0.0f), shininess));
             }
             for (int c = 0; c < 3; ++c) {
                 const float e = std::fabs(img.at(x, y, c) - expected[c]);
@@ -157,8 +158,8 @@ std::string renderToDir(const std::string& env, const std::string& backend, cons
     const fs::path out = fs::temp_directory_path() / ("shaderlab_determinism_" + name);
     fs::remove_all(out);
     const std::string cmd = env + " " + SHADERLAB_CLI + " render " + std::string(SHADERLAB_SOURCE_DIR) +
-                            "/reference_solutions --lab 01-phong --backend " + backend + " --out " + out.string() +
-                            " > /dev/null 2>&1";
+                            "/reference_solutions --lab 01-phong --backend " + backend + " --out " +
+                            out.string() + " > /dev/null 2>&1";
     EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
     return out.string();
 }
@@ -178,8 +179,10 @@ TEST(PhongDeterminism, ThreadCountAndBackendDoNotChangeAByte) {
     for (const auto& entry : fs::directory_iterator(fs::path(base) / "01-phong")) {
         const std::string name = entry.path().filename().string();
         const std::string bytes = slurp(entry.path());
-        EXPECT_EQ(bytes, slurp(fs::path(one) / "01-phong" / name)) << name << " differs with LP_NUM_THREADS=1";
-        EXPECT_EQ(bytes, slurp(fs::path(egl) / "01-phong" / name)) << name << " differs between osmesa and egl";
+        EXPECT_EQ(bytes, slurp(fs::path(one) / "01-phong" / name))
+            << name << " differs with LP_NUM_THREADS=1";
+        EXPECT_EQ(bytes, slurp(fs::path(egl) / "01-phong" / name))
+            << name << " differs between osmesa and egl";
         ++files;
     }
     EXPECT_EQ(files, static_cast<int>(phongSpec().scenes.size()));

@@ -2,11 +2,10 @@
 // survive every format, and the Gradescope and JUnit shapes hold what their consumers read.
 #include "grader/report.h"
 
-#include <nlohmann/json.hpp>
-
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <nlohmann/json.hpp>
 
 namespace {
 

@@ -1,9 +1,10 @@
 // Compile logs become diagnostics that point at the student's own file and line, whatever the
 // framework injected before it.
-#include "gl_test_support.h"
 #include "shaderlab/shader_program.h"
 
 #include <gtest/gtest.h>
+
+#include "gl_test_support.h"
 
 namespace {
 
@@ -15,7 +16,7 @@ constexpr const char* kVertex =
     "void main() { gl_Position = vec4(a_position, 1.0); }\n";
 
 class ShaderProgramTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         std::string err;
         if (!shaderlab::testing::sharedContext(Backend::OSMesa, &err)) FAIL() << err;
@@ -23,7 +24,8 @@ protected:
 };
 
 TEST(PrepareSource, KeepsVersionAndMapsLines) {
-    const auto p = shaderlab::prepareSource("// header comment\n#version 410 core\nvoid main() {}\n", "#define X 1\n");
+    const auto p =
+        shaderlab::prepareSource("// header comment\n#version 410 core\nvoid main() {}\n", "#define X 1\n");
     EXPECT_EQ(p.text.rfind("// header comment\n#version 410 core\n#define X 1\n#line 3 0\nvoid main", 0), 0u)
         << p.text;
     EXPECT_EQ(p.first_student_line, 3);
@@ -46,7 +48,8 @@ TEST(ParseInfoLog, UnderstandsCommonDriverFormats) {
     EXPECT_EQ(mesa[0].column, 5);
     EXPECT_EQ(mesa[0].severity, "error");
     EXPECT_EQ(mesa[0].file, "a.frag");
-    const auto nv = shaderlab::parseInfoLog("0(7) : warning C7050: \"x\" might be used before set\n", "a.frag");
+    const auto nv =
+        shaderlab::parseInfoLog("0(7) : warning C7050: \"x\" might be used before set\n", "a.frag");
     ASSERT_EQ(nv.size(), 1u);
     EXPECT_EQ(nv[0].line, 7);
     EXPECT_EQ(nv[0].severity, "warning");
@@ -62,11 +65,11 @@ TEST(ParseInfoLog, UnderstandsCommonDriverFormats) {
 // The error is on line 6 of the student's file; the prelude adds lines before it.
 TEST_F(ShaderProgramTest, CompileErrorPointsAtStudentLine) {
     const std::string frag =
-        "#version 330 core\n"          // 1
-        "out vec4 o_color;\n"          // 2
-        "uniform float u_gain;\n"      // 3
-        "void main() {\n"              // 4
-        "    float x = u_gain;\n"      // 5
+        "#version 330 core\n"            // 1
+        "out vec4 o_color;\n"            // 2
+        "uniform float u_gain;\n"        // 3
+        "void main() {\n"                // 4
+        "    float x = u_gain;\n"        // 5
         "    o_color = vec4(y, 1.0);\n"  // 6: y is undeclared
         "}\n";
     shaderlab::ShaderProgram p;

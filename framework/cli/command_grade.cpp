@@ -1,12 +1,5 @@
 // `shaderlab grade`, `check`, `compare` and `goldens`.
-#include "commands.h"
-
-#include "grader/report.h"
-#include "grader/scoring.h"
-#include "shaderlab/grading.h"
-#include "shaderlab/paths.h"
-
-#include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -14,8 +7,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
-#include <unistd.h>
+#include "commands.h"
+#include "grader/report.h"
+#include "grader/scoring.h"
+#include "shaderlab/grading.h"
+#include "shaderlab/paths.h"
 
 namespace fs = std::filesystem;
 
@@ -23,7 +21,9 @@ namespace shaderlab::cli {
 
 namespace {
 
-std::string labsRootOf(const CommonOptions& c) { return c.labs_root.empty() ? defaultLabsRoot() : c.labs_root; }
+std::string labsRootOf(const CommonOptions& c) {
+    return c.labs_root.empty() ? defaultLabsRoot() : c.labs_root;
+}
 
 std::string defaultReferenceRoot(const std::string& labs_root) {
     const fs::path p = fs::path(labs_root).parent_path() / "reference_solutions";
@@ -80,9 +80,10 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
     if (!verbose) return;
     for (const grader::ReportScene& s : lab.scenes) {
         const bool pass = s.status == "passed";
-        std::printf("  %s%-4s%s %-28s PSNR %-10s SSIM %.4f  FLIP %.4f  mismatch %5.2f%%\n", pass ? c.green : c.red,
-                    pass ? "ok" : "FAIL", c.reset, s.name.c_str(), formatPsnr(s.metrics.psnr_db).c_str(),
-                    s.metrics.ssim, s.metrics.flip_mean, 100.0 * s.metrics.mismatch_fraction);
+        std::printf("  %s%-4s%s %-28s PSNR %-10s SSIM %.4f  FLIP %.4f  mismatch %5.2f%%\n",
+                    pass ? c.green : c.red, pass ? "ok" : "FAIL", c.reset, s.name.c_str(),
+                    formatPsnr(s.metrics.psnr_db).c_str(), s.metrics.ssim, s.metrics.flip_mean,
+                    100.0 * s.metrics.mismatch_fraction);
         if (!pass && !s.message.empty()) std::printf("       %s\n", s.message.c_str());
     }
 }
@@ -102,10 +103,12 @@ int runGrade(const GradeArgs& args) {
     options.out_dir = args.out_dir;
     options.limits.timeout_s = args.timeout_s;
     if (!args.no_reference)
-        options.reference_root = args.reference_root.empty() ? defaultReferenceRoot(options.labs_root) : args.reference_root;
+        options.reference_root =
+            args.reference_root.empty() ? defaultReferenceRoot(options.labs_root) : args.reference_root;
     fs::create_directories(args.out_dir, ec);
     if (ec) {
-        std::cerr << "shaderlab: " << args.out_dir << ": cannot create the output folder: " << ec.message() << "\n";
+        std::cerr << "shaderlab: " << args.out_dir << ": cannot create the output folder: " << ec.message()
+                  << "\n";
         return 2;
     }
 
@@ -157,8 +160,9 @@ int runCheck(const CheckArgs& args) {
         return 2;
     }
     const std::string submission = args.submission.empty() ? options.labs_root : args.submission;
-    options.out_dir = args.out_dir.empty() ? (fs::path(options.labs_root).parent_path() / "out" / "check").string()
-                                           : args.out_dir;
+    options.out_dir = args.out_dir.empty()
+                          ? (fs::path(options.labs_root).parent_path() / "out" / "check").string()
+                          : args.out_dir;
     fs::create_directories(options.out_dir, ec);
     const grader::Report report = gradeSubmission(submission, options);
     grader::Report with_version = report;
@@ -170,7 +174,8 @@ int runCheck(const CheckArgs& args) {
         printLab(lab, true);
         all_passed = all_passed && lab.status == "passed";
     }
-    std::printf("images and report: %s\n", fs::absolute(fs::path(options.out_dir) / "report.html").string().c_str());
+    std::printf("images and report: %s\n",
+                fs::absolute(fs::path(options.out_dir) / "report.html").string().c_str());
     return all_passed ? 0 : 1;
 }
 
@@ -182,8 +187,8 @@ int runCompare(const CompareArgs& args) {
         return 2;
     }
     if (a.width != b.width || a.height != b.height) {
-        std::cerr << "shaderlab: " << args.a << " is " << a.width << "x" << a.height << " but " << args.b << " is "
-                  << b.width << "x" << b.height << "\n";
+        std::cerr << "shaderlab: " << args.a << " is " << a.width << "x" << a.height << " but " << args.b
+                  << " is " << b.width << "x" << b.height << "\n";
         return 2;
     }
     grader::Thresholds t;
@@ -191,35 +196,38 @@ int runCompare(const CompareArgs& args) {
     const grader::ImageVerdict v = grader::judgeImage(a, {}, b, {}, t);
     const grader::MetricSet& m = v.frame;
     if (args.json) {
-        nlohmann::ordered_json j = {
-            {"reference", args.a},
-            {"test", args.b},
-            {"width", a.width},
-            {"height", a.height},
-            {"psnr_db", std::isfinite(m.psnr_db) ? nlohmann::ordered_json(m.psnr_db) : nlohmann::ordered_json()},
-            {"identical", std::isinf(m.psnr_db)},
-            {"ssim", m.ssim},
-            {"flip_mean", m.flip_mean},
-            {"flip_weighted_median", m.flip_weighted_median},
-            {"mismatch_fraction", m.mismatch_fraction},
-            {"pixel_tolerance", args.tolerance},
-            {"nan_count", v.nan_count}};
+        nlohmann::ordered_json j = {{"reference", args.a},
+                                    {"test", args.b},
+                                    {"width", a.width},
+                                    {"height", a.height},
+                                    {"psnr_db", std::isfinite(m.psnr_db) ? nlohmann::ordered_json(m.psnr_db)
+                                                                         : nlohmann::ordered_json()},
+                                    {"identical", std::isinf(m.psnr_db)},
+                                    {"ssim", m.ssim},
+                                    {"flip_mean", m.flip_mean},
+                                    {"flip_weighted_median", m.flip_weighted_median},
+                                    {"mismatch_fraction", m.mismatch_fraction},
+                                    {"pixel_tolerance", args.tolerance},
+                                    {"nan_count", v.nan_count}};
         std::cout << j.dump(2) << "\n";
     } else {
-        std::printf("PSNR      %s\nSSIM      %.6f\nFLIP mean %.6f\nmismatch  %.4f%% (tolerance %.3f, 1-pixel shift allowed)\n",
-                    formatPsnr(m.psnr_db).c_str(), m.ssim, m.flip_mean, 100.0 * m.mismatch_fraction, args.tolerance);
+        std::printf(
+            "PSNR      %s\nSSIM      %.6f\nFLIP mean %.6f\nmismatch  %.4f%% (tolerance %.3f, 1-pixel shift "
+            "allowed)\n",
+            formatPsnr(m.psnr_db).c_str(), m.ssim, m.flip_mean, 100.0 * m.mismatch_fraction, args.tolerance);
     }
     return 0;
 }
 
 int runGoldens(const GoldensArgs& args) {
     const std::string labs_root = labsRootOf(args.common);
-    const std::string reference_root = args.reference_root.empty()
-                                           ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
-                                           : args.reference_root;
+    const std::string reference_root =
+        args.reference_root.empty() ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
+                                    : args.reference_root;
     Backend backend{};
     parseBackend(args.common.backend, &backend);
-    const std::vector<std::string> errors = writeGoldens(reference_root, labs_root, args.common.labs, backend, args.golden_root);
+    const std::vector<std::string> errors =
+        writeGoldens(reference_root, labs_root, args.common.labs, backend, args.golden_root);
     for (const std::string& e : errors) std::cerr << "shaderlab: " << e << "\n";
     const std::string where = args.golden_root.empty() ? labs_root : args.golden_root;
     if (errors.empty()) std::printf("goldens written under %s/*/golden/\n", where.c_str());

@@ -1,14 +1,13 @@
 // `shaderlab render` and `shaderlab info`.
-#include "commands.h"
+#include <filesystem>
+#include <iostream>
 
+#include "commands.h"
 #include "shaderlab/gl_context.h"
 #include "shaderlab/lab_catalog.h"
 #include "shaderlab/lab_spec.h"
 #include "shaderlab/paths.h"
 #include "shaderlab/renderer.h"
-
-#include <filesystem>
-#include <iostream>
 
 namespace fs = std::filesystem;
 
@@ -86,7 +85,8 @@ int runRender(const RenderArgs& args) {
             for (std::size_t i = 0; i < scene.passes.size(); ++i) {
                 const PassImage& p = scene.passes[i];
                 const bool final_image = i + 1 == scene.passes.size();
-                const fs::path file = lab_out / (final_image ? scene.scene + ".png" : scene.scene + "." + p.pass + ".png");
+                const fs::path file =
+                    lab_out / (final_image ? scene.scene + ".png" : scene.scene + "." + p.pass + ".png");
                 std::string err;
                 if (!grader::writePng(p.color, file.string(), &err)) {
                     std::cerr << "shaderlab: " << err << "\n";

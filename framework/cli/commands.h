@@ -10,7 +10,7 @@ namespace shaderlab::cli {
 
 struct CommonOptions {
     std::string backend = "osmesa";
-    std::string labs_root;  // empty: defaultLabsRoot()
+    std::string labs_root;          // empty: defaultLabsRoot()
     std::vector<std::string> labs;  // --lab, repeatable; empty: every lab the labs root has
 };
 
@@ -28,8 +28,8 @@ struct GradeArgs {
     CommonOptions common;
     std::string submission;
     std::string out_dir;
-    std::string reference_root;  // empty: <labs>/../reference_solutions when it exists
-    bool no_reference = false;   // grade against the stored goldens even when references exist
+    std::string reference_root;        // empty: <labs>/../reference_solutions when it exists
+    bool no_reference = false;         // grade against the stored goldens even when references exist
     std::vector<std::string> formats;  // json (always), gradescope, junit
     double timeout_s = 60.0;
 };

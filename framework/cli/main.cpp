@@ -1,10 +1,9 @@
 // shaderlab: render, grade and check GLSL lab submissions. Argument parsing only; the work is
 // in the command functions (commands.h) and the libraries.
-#include "commands.h"
-
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
+
+#include "commands.h"
 
 int main(int argc, char** argv) {
     using namespace shaderlab::cli;
@@ -20,15 +19,19 @@ int main(int argc, char** argv) {
     };
 
     RenderArgs render;
-    CLI::App* render_cmd = app.add_subcommand("render", "render a submission's labs to PNG, one per graded scene");
-    render_cmd->add_option("submission", render.submission, "folder mirroring labs/ (e.g. reference_solutions)")
+    CLI::App* render_cmd =
+        app.add_subcommand("render", "render a submission's labs to PNG, one per graded scene");
+    render_cmd
+        ->add_option("submission", render.submission, "folder mirroring labs/ (e.g. reference_solutions)")
         ->required();
     render_cmd->add_option("--out", render.out_dir, "output folder")->required();
-    render_cmd->add_flag("--all-passes", render.all_passes, "also write the ungraded passes of multi-pass labs");
+    render_cmd->add_flag("--all-passes", render.all_passes,
+                         "also write the ungraded passes of multi-pass labs");
     add_common(render_cmd, &render.common);
 
     GradeArgs grade;
-    CLI::App* grade_cmd = app.add_subcommand("grade", "grade a submission: report.json, report.html and images");
+    CLI::App* grade_cmd =
+        app.add_subcommand("grade", "grade a submission: report.json, report.html and images");
     grade_cmd->add_option("submission", grade.submission, "folder mirroring labs/")->required();
     grade_cmd->add_option("--out", grade.out_dir, "output folder")->required();
     grade_cmd->add_option("--format", grade.formats, "extra report formats: gradescope (results.json), junit")
@@ -36,21 +39,25 @@ int main(int argc, char** argv) {
     grade_cmd->add_option("--reference", grade.reference_root,
                           "reference solutions folder (default: reference_solutions beside labs/)");
     grade_cmd->add_flag("--no-reference", grade.no_reference, "grade against the stored golden images");
-    grade_cmd->add_option("--timeout", grade.timeout_s, "seconds one lab may take to render")->capture_default_str();
+    grade_cmd->add_option("--timeout", grade.timeout_s, "seconds one lab may take to render")
+        ->capture_default_str();
     add_common(grade_cmd, &grade.common);
 
     CheckArgs check;
-    CLI::App* check_cmd = app.add_subcommand("check", "check one lab of your working copy and print a verdict");
+    CLI::App* check_cmd =
+        app.add_subcommand("check", "check one lab of your working copy and print a verdict");
     check_cmd->add_option("lab", check.lab, "lab id, e.g. 01-phong")->required();
     check_cmd->add_option("--submission", check.submission, "folder mirroring labs/ (default: labs/ itself)");
     check_cmd->add_option("--out", check.out_dir, "where images and the report go (default: out/check)");
     check_cmd->add_flag("--no-reference", check.no_reference, "use the stored golden images");
-    check_cmd->add_option("--timeout", check.timeout_s, "seconds the lab may take to render")->capture_default_str();
+    check_cmd->add_option("--timeout", check.timeout_s, "seconds the lab may take to render")
+        ->capture_default_str();
     check_cmd->add_option("--backend", check.common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
     check_cmd->add_option("--labs", check.common.labs_root, "folder holding the labs");
 
     CompareArgs compare;
-    CLI::App* compare_cmd = app.add_subcommand("compare", "print PSNR, SSIM, FLIP and mismatch of two PNG images");
+    CLI::App* compare_cmd =
+        app.add_subcommand("compare", "print PSNR, SSIM, FLIP and mismatch of two PNG images");
     compare_cmd->add_option("reference", compare.a, "reference image")->required();
     compare_cmd->add_option("test", compare.b, "test image")->required();
     compare_cmd->add_flag("--json", compare.json, "print JSON");
@@ -58,9 +65,11 @@ int main(int argc, char** argv) {
         ->capture_default_str();
 
     GoldensArgs goldens;
-    CLI::App* goldens_cmd = app.add_subcommand("goldens", "render the reference solutions into labs/*/golden/");
+    CLI::App* goldens_cmd =
+        app.add_subcommand("goldens", "render the reference solutions into labs/*/golden/");
     goldens_cmd->add_option("--reference", goldens.reference_root, "reference solutions folder");
-    goldens_cmd->add_option("--into", goldens.golden_root, "write to DIR/<lab>/golden/ instead of the labs (to compare)");
+    goldens_cmd->add_option("--into", goldens.golden_root,
+                            "write to DIR/<lab>/golden/ instead of the labs (to compare)");
     add_common(goldens_cmd, &goldens.common);
 
     std::string info_backend = "osmesa";

@@ -3,11 +3,13 @@
 // core-profile context of the newest version offered, then load GL through glad.
 #include "shaderlab/gl_context.h"
 
+// glad's header must come before any other GL header (osmesa.h pulls in GL/gl.h).
+// clang-format off
 #include "shaderlab/gl.h"
-
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/osmesa.h>
+// clang-format on
 
 #include <cstdio>
 #include <cstring>
@@ -24,7 +26,7 @@ std::string versionString(int major, int minor) {
 }
 
 class OSMesaContextImpl final : public GlContext {
-public:
+  public:
     ~OSMesaContextImpl() override {
         if (ctx_) OSMesaDestroyContext(ctx_);
     }
@@ -39,9 +41,19 @@ public:
         // requested version, and fails when it cannot.
         const int wanted[][2] = {{4, 5}, {4, 3}, {4, 1}, {3, 3}};
         for (const auto& v : wanted) {
-            const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 8,
-                                   OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, v[0],
-                                   OSMESA_CONTEXT_MINOR_VERSION, v[1], 0};
+            const int attribs[] = {OSMESA_FORMAT,
+                                   OSMESA_RGBA,
+                                   OSMESA_DEPTH_BITS,
+                                   24,
+                                   OSMESA_STENCIL_BITS,
+                                   8,
+                                   OSMESA_PROFILE,
+                                   OSMESA_CORE_PROFILE,
+                                   OSMESA_CONTEXT_MAJOR_VERSION,
+                                   v[0],
+                                   OSMESA_CONTEXT_MINOR_VERSION,
+                                   v[1],
+                                   0};
             ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
             if (ctx_) break;
         }
@@ -50,7 +62,8 @@ public:
             OSMesaContext legacy = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
             std::string found = "none";
             if (legacy && OSMesaMakeCurrent(legacy, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
-                auto get_string = reinterpret_cast<const GLubyte* (*)(GLenum)>(OSMesaGetProcAddress("glGetString"));
+                auto get_string =
+                    reinterpret_cast<const GLubyte* (*)(GLenum)>(OSMesaGetProcAddress("glGetString"));
                 if (get_string && get_string(GL_VERSION))
                     found = reinterpret_cast<const char*>(get_string(GL_VERSION));
             }
@@ -67,13 +80,13 @@ public:
         return loadGl(reinterpret_cast<GetProcFn>(&OSMesaGetProcAddress), &info_, error);
     }
 
-private:
+  private:
     OSMesaContext ctx_ = nullptr;
     unsigned char pixel_[4] = {};
 };
 
 class EglContextImpl final : public GlContext {
-public:
+  public:
     ~EglContextImpl() override {
         if (display_ != EGL_NO_DISPLAY) {
             eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
@@ -110,8 +123,8 @@ public:
             *error = "egl: the display does not offer desktop OpenGL";
             return false;
         }
-        const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                                         EGL_NONE};
+        const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                                         EGL_PBUFFER_BIT, EGL_NONE};
         EGLConfig config = nullptr;
         EGLint count = 0;
         // Surfaceless contexts need no config; when the display lists one we use it anyway so
@@ -119,15 +132,21 @@ public:
         if (!eglChooseConfig(display_, config_attribs, &config, 1, &count) || count == 0) config = nullptr;
         const int wanted[][2] = {{4, 5}, {4, 3}, {4, 1}, {3, 3}};
         for (const auto& v : wanted) {
-            const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, v[0], EGL_CONTEXT_MINOR_VERSION, v[1],
-                                          EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+            const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                          v[0],
+                                          EGL_CONTEXT_MINOR_VERSION,
+                                          v[1],
+                                          EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                          EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                           EGL_NONE};
-            ctx_ = eglCreateContext(display_, config ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctx_attribs);
+            ctx_ =
+                eglCreateContext(display_, config ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctx_attribs);
             if (ctx_ != EGL_NO_CONTEXT) break;
         }
         if (ctx_ == EGL_NO_CONTEXT) {
             *error = "egl: cannot create an OpenGL " + versionString(kMinMajor, kMinMinor) +
-                     " core context (EGL " + versionString(major, minor) + ", error 0x" + hex(eglGetError()) + ")";
+                     " core context (EGL " + versionString(major, minor) + ", error 0x" + hex(eglGetError()) +
+                     ")";
             return false;
         }
         if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_)) {
@@ -137,7 +156,7 @@ public:
         return loadGl(reinterpret_cast<GetProcFn>(&eglGetProcAddress), &info_, error);
     }
 
-private:
+  private:
     static std::string hex(EGLint v) {
         char buf[16];
         std::snprintf(buf, sizeof buf, "%04x", static_cast<unsigned>(v));
@@ -180,8 +199,8 @@ bool loadGl(GetProcFn get_proc, GlInfo* info, std::string* error) {
     info->major = GLAD_VERSION_MAJOR(version);
     info->minor = GLAD_VERSION_MINOR(version);
     if (info->major < kMinMajor || (info->major == kMinMajor && info->minor < kMinMinor)) {
-        *error = "OpenGL " + versionString(kMinMajor, kMinMinor) + " core is required, found " + info->version +
-                 " (" + info->renderer + ")";
+        *error = "OpenGL " + versionString(kMinMajor, kMinMinor) + " core is required, found " +
+                 info->version + " (" + info->renderer + ")";
         return false;
     }
     return true;

@@ -1,14 +1,14 @@
 // Grading a submission lab by lab; see grading.h and docs/grading.md.
 #include "shaderlab/grading.h"
 
+#include <chrono>
+#include <filesystem>
+#include <map>
+
 #include "grader/heatmap.h"
 #include "grader/scoring.h"
 #include "shaderlab/lab_catalog.h"
 #include "shaderlab/lab_spec.h"
-
-#include <chrono>
-#include <map>
-#include <filesystem>
 
 namespace fs = std::filesystem;
 
@@ -26,13 +26,19 @@ struct ReferenceImages {
 
 std::string labStatusOf(IsolatedStatus s) {
     switch (s) {
-        case IsolatedStatus::Missing: return "missing";
-        case IsolatedStatus::CompileError: return "compile_error";
-        case IsolatedStatus::LinkError: return "link_error";
-        case IsolatedStatus::Timeout: return "timeout";
+        case IsolatedStatus::Missing:
+            return "missing";
+        case IsolatedStatus::CompileError:
+            return "compile_error";
+        case IsolatedStatus::LinkError:
+            return "link_error";
+        case IsolatedStatus::Timeout:
+            return "timeout";
         case IsolatedStatus::Crashed:
-        case IsolatedStatus::RenderError: return "crashed";
-        default: return "passed";
+        case IsolatedStatus::RenderError:
+            return "crashed";
+        default:
+            return "passed";
     }
 }
 
@@ -45,7 +51,8 @@ std::vector<const PassSpec*> gradedPasses(const LabSpec& spec) {
 
 grader::Image coverageImage(const std::vector<std::uint8_t>& coverage, int w, int h) {
     grader::Image img(w, h, 1);
-    for (std::size_t i = 0; i < img.pixels.size() && i < coverage.size(); ++i) img.pixels[i] = coverage[i] ? 1.0f : 0.0f;
+    for (std::size_t i = 0; i < img.pixels.size() && i < coverage.size(); ++i)
+        img.pixels[i] = coverage[i] ? 1.0f : 0.0f;
     return img;
 }
 
@@ -79,11 +86,12 @@ ReferenceImages loadGoldens(const LabSpec& spec) {
     return ref;
 }
 
-ReferenceImages renderReference(const LabSpec& spec, const std::string& reference_root, const GradeOptions& options) {
+ReferenceImages renderReference(const LabSpec& spec, const std::string& reference_root,
+                                const GradeOptions& options) {
     ReferenceImages ref;
     ref.source = "reference_solutions";
-    const IsolatedRender r =
-        renderLabIsolated(spec, (fs::path(reference_root) / spec.id).string(), options.backend, options.limits);
+    const IsolatedRender r = renderLabIsolated(spec, (fs::path(reference_root) / spec.id).string(),
+                                               options.backend, options.limits);
     if (r.status != IsolatedStatus::Ok) {
         ref.error = std::string("the reference solution did not render (") + isolatedStatusName(r.status) +
                     "): " + r.message;
@@ -132,13 +140,14 @@ std::string writeImage(const grader::Image& img, const fs::path& out_dir, const 
     return rel.generic_string();
 }
 
-grader::ReportLab gradeLab(const std::string& submission_dir, const std::string& id, const GradeOptions& options,
-                           std::string* renderer) {
+grader::ReportLab gradeLab(const std::string& submission_dir, const std::string& id,
+                           const GradeOptions& options, std::string* renderer) {
     grader::ReportLab lab;
     lab.id = id;
     const auto t0 = std::chrono::steady_clock::now();
     auto finish = [&]() {
-        lab.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        lab.wall_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         return lab;
     };
 
@@ -155,7 +164,8 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     std::error_code ec;
     if (!fs::is_directory(fs::path(submission_dir) / id, ec)) {
         lab.status = "missing";
-        lab.message = (fs::path(submission_dir) / id).string() + ": the submission has no folder for this lab";
+        lab.message =
+            (fs::path(submission_dir) / id).string() + ": the submission has no folder for this lab";
         return finish();
     }
 
@@ -187,8 +197,9 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     thresholds.flip_mean_max = spec.grading.flip_mean_max;
     thresholds.mismatch_max = spec.grading.mismatch_max;
     thresholds.pixel_tolerance = spec.grading.pixel_tolerance;
-    const double scene_points =
-        spec.scenes.empty() ? 0.0 : static_cast<double>(spec.grading.points) / static_cast<double>(spec.scenes.size());
+    const double scene_points = spec.scenes.empty() ? 0.0
+                                                    : static_cast<double>(spec.grading.points) /
+                                                          static_cast<double>(spec.scenes.size());
     const fs::path out_dir = options.out_dir;
     std::vector<std::string> write_errors;
 
@@ -219,12 +230,14 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             rp.metrics = reportMetrics(v.covered, v);
             const fs::path base = fs::path(id) / scene.scene;
             const std::string suffix = final_image ? "" : "." + mine.pass;
-            rp.student_image = writeImage(mine.color, out_dir, base / ("student" + suffix + ".png"), &write_errors);
+            rp.student_image =
+                writeImage(mine.color, out_dir, base / ("student" + suffix + ".png"), &write_errors);
             rp.reference_image =
                 writeImage(theirs.color, out_dir, base / ("reference" + suffix + ".png"), &write_errors);
             grader::HeatmapConfig hc;
             hc.outline = v.mismatches.empty() ? nullptr : &v.mismatches;
-            const grader::Image heat = grader::diffHeatmap(v.flip_map, mine.color.width, mine.color.height, hc);
+            const grader::Image heat =
+                grader::diffHeatmap(v.flip_map, mine.color.width, mine.color.height, hc);
             if (!heat.empty())
                 rp.diff_image = writeImage(heat, out_dir, base / ("diff" + suffix + ".png"), &write_errors);
             if (!v.passed && rs.first_failing_pass.empty()) rs.first_failing_pass = mine.pass;
@@ -290,14 +303,15 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
             errors.insert(errors.end(), parsed.errors.begin(), parsed.errors.end());
             continue;
         }
-        const IsolatedRender r = renderLabIsolated(parsed.spec, (fs::path(reference_root) / id).string(), backend,
-                                                   IsolationLimits{});
+        const IsolatedRender r = renderLabIsolated(parsed.spec, (fs::path(reference_root) / id).string(),
+                                                   backend, IsolationLimits{});
         if (r.status != IsolatedStatus::Ok) {
             errors.push_back(id + ": reference solution: " + isolatedStatusName(r.status) + ": " + r.message);
             continue;
         }
-        const std::string lab_dir =
-            golden_root_override.empty() ? parsed.spec.lab_dir : (fs::path(golden_root_override) / id).string();
+        const std::string lab_dir = golden_root_override.empty()
+                                        ? parsed.spec.lab_dir
+                                        : (fs::path(golden_root_override) / id).string();
         std::error_code ec;
         fs::remove_all(fs::path(lab_dir) / "golden", ec);  // stale goldens of renamed scenes go too
         fs::create_directories(fs::path(lab_dir) / "golden", ec);
@@ -306,7 +320,8 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
                 const PassImage& p = s.passes[i];
                 const bool final_image = i + 1 == s.passes.size();
                 std::string err;
-                if (!grader::writePng(p.color, goldenPath(lab_dir, s.scene, p.pass, final_image, false), &err) ||
+                if (!grader::writePng(p.color, goldenPath(lab_dir, s.scene, p.pass, final_image, false),
+                                      &err) ||
                     !grader::writePng(coverageImage(p.coverage, p.color.width, p.color.height),
                                       goldenPath(lab_dir, s.scene, p.pass, final_image, true), &err))
                     errors.push_back(err);

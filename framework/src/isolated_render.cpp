@@ -1,7 +1,9 @@
 // Child-process rendering; see isolated_render.h.
 #include "shaderlab/isolated_render.h"
 
-#include <nlohmann/json.hpp>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
@@ -11,11 +13,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <thread>
-
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -40,7 +39,8 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
 
 // Child side: render, then write result.json and one raw file per image. Never returns.
 [[noreturn]] void childMain(const LabSpec& spec, const std::string& shader_dir, Backend backend,
-                            const IsolationLimits& limits, const RenderOptions& options, const fs::path& dir) {
+                            const IsolationLimits& limits, const RenderOptions& options,
+                            const fs::path& dir) {
     rlimit as{};
     as.rlim_cur = as.rlim_max = limits.memory_bytes;
     setrlimit(RLIMIT_AS, &as);
@@ -59,8 +59,11 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
         result["message"] = r.message;
         json diags = json::array();
         for (const Diagnostic& d : r.diagnostics)
-            diags.push_back({{"file", d.file}, {"line", d.line}, {"column", d.column},
-                             {"severity", d.severity}, {"message", d.message}});
+            diags.push_back({{"file", d.file},
+                             {"line", d.line},
+                             {"column", d.column},
+                             {"severity", d.severity},
+                             {"message", d.message}});
         result["diagnostics"] = diags;
         json scenes = json::array();
         int n = 0;
@@ -68,10 +71,15 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
             json passes = json::array();
             for (const PassImage& p : s.passes) {
                 const std::string stem = "img" + std::to_string(n++);
-                writeBytes(dir / (stem + ".rgba"), p.color.pixels.data(), p.color.pixels.size() * sizeof(float));
+                writeBytes(dir / (stem + ".rgba"), p.color.pixels.data(),
+                           p.color.pixels.size() * sizeof(float));
                 writeBytes(dir / (stem + ".cov"), p.coverage.data(), p.coverage.size());
-                passes.push_back({{"pass", p.pass}, {"target", p.target}, {"graded", p.graded},
-                                  {"width", p.color.width}, {"height", p.color.height}, {"file", stem}});
+                passes.push_back({{"pass", p.pass},
+                                  {"target", p.target},
+                                  {"graded", p.graded},
+                                  {"width", p.color.width},
+                                  {"height", p.color.height},
+                                  {"file", stem}});
             }
             scenes.push_back({{"scene", s.scene}, {"render_ms", s.render_ms}, {"passes", passes}});
         }
@@ -96,11 +104,16 @@ IsolatedStatus statusFromName(const std::string& s) {
 
 RenderStatus renderStatusOf(IsolatedStatus s) {
     switch (s) {
-        case IsolatedStatus::Ok: return RenderStatus::Ok;
-        case IsolatedStatus::Missing: return RenderStatus::Missing;
-        case IsolatedStatus::CompileError: return RenderStatus::CompileError;
-        case IsolatedStatus::LinkError: return RenderStatus::LinkError;
-        default: return RenderStatus::RenderError;
+        case IsolatedStatus::Ok:
+            return RenderStatus::Ok;
+        case IsolatedStatus::Missing:
+            return RenderStatus::Missing;
+        case IsolatedStatus::CompileError:
+            return RenderStatus::CompileError;
+        case IsolatedStatus::LinkError:
+            return RenderStatus::LinkError;
+        default:
+            return RenderStatus::RenderError;
     }
 }
 
@@ -133,7 +146,8 @@ bool readChildResult(const fs::path& dir, IsolatedRender* out) {
             img.color = grader::Image(w, h, 4);
             img.coverage.resize(static_cast<std::size_t>(w) * h);
             const std::string stem = p.value("file", "");
-            if (!readBytes(dir / (stem + ".rgba"), img.color.pixels.data(), img.color.pixels.size() * sizeof(float)) ||
+            if (!readBytes(dir / (stem + ".rgba"), img.color.pixels.data(),
+                           img.color.pixels.size() * sizeof(float)) ||
                 !readBytes(dir / (stem + ".cov"), img.coverage.data(), img.coverage.size()))
                 return false;
             scene.passes.push_back(std::move(img));
@@ -147,13 +161,20 @@ bool readChildResult(const fs::path& dir, IsolatedRender* out) {
 
 const char* isolatedStatusName(IsolatedStatus status) {
     switch (status) {
-        case IsolatedStatus::Ok: return "ok";
-        case IsolatedStatus::Missing: return "missing";
-        case IsolatedStatus::CompileError: return "compile_error";
-        case IsolatedStatus::LinkError: return "link_error";
-        case IsolatedStatus::RenderError: return "render_error";
-        case IsolatedStatus::Timeout: return "timeout";
-        default: return "crashed";
+        case IsolatedStatus::Ok:
+            return "ok";
+        case IsolatedStatus::Missing:
+            return "missing";
+        case IsolatedStatus::CompileError:
+            return "compile_error";
+        case IsolatedStatus::LinkError:
+            return "link_error";
+        case IsolatedStatus::RenderError:
+            return "render_error";
+        case IsolatedStatus::Timeout:
+            return "timeout";
+        default:
+            return "crashed";
     }
 }
 

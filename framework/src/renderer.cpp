@@ -1,20 +1,19 @@
 // Executes a lab's passes on the current context; see renderer.h.
 #include "shaderlab/renderer.h"
 
-#include "shaderlab/gl.h"
-#include "shaderlab/gltf_loader.h"
-#include "shaderlab/paths.h"
-
-#include <glm/gtc/matrix_inverse.hpp>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <map>
+
+#include "shaderlab/gl.h"
+#include "shaderlab/gltf_loader.h"
+#include "shaderlab/paths.h"
 
 namespace shaderlab {
 
@@ -39,7 +38,8 @@ struct GpuMesh {
 template <typename T>
 void uploadAttribute(GLuint buffer, GLuint location, int components, const std::vector<T>& data) {
     glBindBuffer(GL_ARRAY_BUFFER, buffer);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(T)), data.data(),
+                 GL_STATIC_DRAW);
     glEnableVertexAttribArray(location);
     glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
 }
@@ -56,8 +56,9 @@ std::unique_ptr<GpuMesh> uploadMesh(const Mesh& mesh) {
     uploadAttribute(gpu->vbo[2], 2, 2, uv);
     glGenBuffers(1, &gpu->ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu->ebo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-                 mesh.indices.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)), mesh.indices.data(),
+                 GL_STATIC_DRAW);
     gpu->index_count = static_cast<GLsizei>(mesh.indices.size());
     glBindVertexArray(0);
     return gpu;
@@ -90,9 +91,12 @@ GLint glFilter(TextureFilter f) { return f == TextureFilter::Nearest ? GL_NEARES
 
 GLint glWrap(TextureWrap w) {
     switch (w) {
-        case TextureWrap::Repeat: return GL_REPEAT;
-        case TextureWrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
-        default: return GL_CLAMP_TO_EDGE;
+        case TextureWrap::Repeat:
+            return GL_REPEAT;
+        case TextureWrap::MirroredRepeat:
+            return GL_MIRRORED_REPEAT;
+        default:
+            return GL_CLAMP_TO_EDGE;
     }
 }
 
@@ -106,13 +110,15 @@ void setSampling(GLuint texture, TextureFilter filter, TextureWrap wrap) {
 
 bool createTarget(const TargetSpec& spec, int lab_w, int lab_h, Target* t, std::string* error) {
     t->width = spec.width > 0 ? spec.width : std::max(1, static_cast<int>(std::lround(lab_w * spec.scale)));
-    t->height = spec.height > 0 ? spec.height : std::max(1, static_cast<int>(std::lround(lab_h * spec.scale)));
+    t->height =
+        spec.height > 0 ? spec.height : std::max(1, static_cast<int>(std::lround(lab_h * spec.scale)));
     GLenum internal = GL_RGBA32F;
     if (spec.format == TargetFormat::RGBA8) internal = GL_RGBA8;
     if (spec.format == TargetFormat::RGBA16F) internal = GL_RGBA16F;
     glGenTextures(1, &t->color);
     glBindTexture(GL_TEXTURE_2D, t->color);
-    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal), t->width, t->height, 0, GL_RGBA, GL_FLOAT, nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal), t->width, t->height, 0, GL_RGBA, GL_FLOAT,
+                 nullptr);
     setSampling(t->color, spec.filter, spec.wrap);
     glGenRenderbuffers(1, &t->depth);
     glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
@@ -132,9 +138,9 @@ bool createTarget(const TargetSpec& spec, int lab_w, int lab_h, Target* t, std::
 void applyState(const RenderState& s) {
     if (s.depth_test) {
         glEnable(GL_DEPTH_TEST);
-        glDepthFunc(s.depth_func == DepthFunc::Less ? GL_LESS
+        glDepthFunc(s.depth_func == DepthFunc::Less        ? GL_LESS
                     : s.depth_func == DepthFunc::LessEqual ? GL_LEQUAL
-                                                          : GL_ALWAYS);
+                                                           : GL_ALWAYS);
     } else {
         glDisable(GL_DEPTH_TEST);
     }
@@ -152,8 +158,10 @@ void applyState(const RenderState& s) {
         glDisable(GL_BLEND);
     } else {
         glEnable(GL_BLEND);
-        if (s.blend == BlendMode::Alpha) glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-        else glBlendFunc(GL_ONE, GL_ONE);
+        if (s.blend == BlendMode::Alpha)
+            glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        else
+            glBlendFunc(GL_ONE, GL_ONE);
     }
     GLbitfield clear = 0;
     if (s.clear_color) {
@@ -182,7 +190,8 @@ PassImage readBack(const Target& t, bool with_depth) {
     img.color = grader::Image(w, h, 4);
     // GL's first row is the bottom one; images are stored top row first.
     for (int y = 0; y < h; ++y) {
-        std::copy_n(rgba.data() + static_cast<std::size_t>(h - 1 - y) * w * 4, static_cast<std::size_t>(w) * 4,
+        std::copy_n(rgba.data() + static_cast<std::size_t>(h - 1 - y) * w * 4,
+                    static_cast<std::size_t>(w) * 4,
                     img.color.pixels.data() + static_cast<std::size_t>(y) * w * 4);
     }
     img.coverage.assign(static_cast<std::size_t>(w) * h, 1);
@@ -199,12 +208,18 @@ PassImage readBack(const Target& t, bool with_depth) {
 
 std::string glErrorName(GLenum e) {
     switch (e) {
-        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-        case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-        default: return "GL error " + std::to_string(e);
+        case GL_INVALID_ENUM:
+            return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE:
+            return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION:
+            return "GL_INVALID_OPERATION";
+        case GL_OUT_OF_MEMORY:
+            return "GL_OUT_OF_MEMORY";
+        case GL_INVALID_FRAMEBUFFER_OPERATION:
+            return "GL_INVALID_FRAMEBUFFER_OPERATION";
+        default:
+            return "GL error " + std::to_string(e);
     }
 }
 
@@ -250,7 +265,8 @@ LightUniforms resolveLights(const Scene& scene, const SceneSpec& spec, const Cam
 
 // Sets a framework uniform when the shader declares it with the right type; framework
 // uniforms the shader does not use are simply skipped.
-void setIfActive(const ShaderProgram& p, const char* name, GLenum type, const std::function<void(GLint)>& fn) {
+void setIfActive(const ShaderProgram& p, const char* name, GLenum type,
+                 const std::function<void(GLint)>& fn) {
     const UniformSlot* s = p.uniform(name);
     if (s && s->type == type) fn(s->location);
 }
@@ -259,11 +275,16 @@ void setIfActive(const ShaderProgram& p, const char* name, GLenum type, const st
 
 const char* renderStatusName(RenderStatus status) {
     switch (status) {
-        case RenderStatus::Ok: return "ok";
-        case RenderStatus::Missing: return "missing";
-        case RenderStatus::CompileError: return "compile_error";
-        case RenderStatus::LinkError: return "link_error";
-        default: return "render_error";
+        case RenderStatus::Ok:
+            return "ok";
+        case RenderStatus::Missing:
+            return "missing";
+        case RenderStatus::CompileError:
+            return "compile_error";
+        case RenderStatus::LinkError:
+            return "link_error";
+        default:
+            return "render_error";
     }
 }
 
@@ -340,7 +361,8 @@ LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const Re
             GLuint tex = 0;
             glGenTextures(1, &tex);
             glBindTexture(GL_TEXTURE_2D, tex);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, img.width, img.height, 0, GL_RGBA, GL_FLOAT, rgba.data());
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, img.width, img.height, 0, GL_RGBA, GL_FLOAT,
+                         rgba.data());
             file_textures[in.texture_file] = tex;
         }
     }
@@ -376,9 +398,8 @@ LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const Re
     std::map<std::string, Scene> scene_cache;
 
     for (const SceneSpec& scene_spec : spec.scenes) {
-        if (!options.only_scenes.empty() &&
-            std::find(options.only_scenes.begin(), options.only_scenes.end(), scene_spec.name) ==
-                options.only_scenes.end())
+        if (!options.only_scenes.empty() && std::find(options.only_scenes.begin(), options.only_scenes.end(),
+                                                      scene_spec.name) == options.only_scenes.end())
             continue;
         const auto t0 = std::chrono::steady_clock::now();
         SceneRender scene_out;
@@ -457,7 +478,8 @@ LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const Re
             });
             setIfActive(prog, "u_light_count", GL_INT, [&](GLint l) { glUniform1i(l, lights.count); });
             if (const UniformSlot* s = prog.uniform("u_light_position"); s && s->type == GL_FLOAT_VEC4)
-                glUniform4fv(s->location, std::min(s->size, lights.count), glm::value_ptr(lights.position[0]));
+                glUniform4fv(s->location, std::min(s->size, lights.count),
+                             glm::value_ptr(lights.position[0]));
             if (const UniformSlot* s = prog.uniform("u_light_color"); s && s->type == GL_FLOAT_VEC3)
                 glUniform3fv(s->location, std::min(s->size, lights.count), glm::value_ptr(lights.color[0]));
 
@@ -481,8 +503,9 @@ LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const Re
                             [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(model_view)); });
                 setIfActive(prog, "u_model_view_projection", GL_FLOAT_MAT4,
                             [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(mvp)); });
-                setIfActive(prog, "u_normal_matrix", GL_FLOAT_MAT3,
-                            [&](GLint l) { glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(normal_matrix)); });
+                setIfActive(prog, "u_normal_matrix", GL_FLOAT_MAT3, [&](GLint l) {
+                    glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+                });
                 setIfActive(prog, "u_base_color", GL_FLOAT_VEC4,
                             [&](GLint l) { glUniform4fv(l, 1, glm::value_ptr(base_color)); });
                 glBindVertexArray(mesh.vao);
@@ -493,8 +516,10 @@ LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const Re
                 draw(*fullscreen, glm::mat4(1.0f), glm::vec4(1.0f));
             } else {
                 for (const DrawItem& item : scene->draw_items) {
-                    const glm::vec4 base = item.material >= 0 ? scene->materials[static_cast<std::size_t>(item.material)].base_color
-                                                               : glm::vec4(1.0f);
+                    const glm::vec4 base =
+                        item.material >= 0
+                            ? scene->materials[static_cast<std::size_t>(item.material)].base_color
+                            : glm::vec4(1.0f);
                     draw(*gpu_meshes[static_cast<std::size_t>(item.mesh)], item.world, base);
                 }
             }
@@ -503,7 +528,8 @@ LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const Re
             const GLenum err = glGetError();
             if (err != GL_NO_ERROR) {
                 result.status = RenderStatus::RenderError;
-                result.message = "pass '" + pass.name + "', scene '" + scene_spec.name + "': " + glErrorName(err);
+                result.message =
+                    "pass '" + pass.name + "', scene '" + scene_spec.name + "': " + glErrorName(err);
                 cleanup_textures();
                 return result;
             }

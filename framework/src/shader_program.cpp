@@ -1,15 +1,14 @@
 // GLSL compile/link with structured logs; see shader_program.h.
 #include "shaderlab/shader_program.h"
 
-#include "shaderlab/gl.h"
-
-#include <glm/gtc/type_ptr.hpp>
-
 #include <cctype>
 #include <chrono>
 #include <cstring>
+#include <glm/gtc/type_ptr.hpp>
 #include <regex>
 #include <sstream>
+
+#include "shaderlab/gl.h"
 
 namespace shaderlab {
 
@@ -68,30 +67,49 @@ std::vector<std::string> splitLines(const std::string& text) {
 // The GLSL type a lab.json value stands for.
 unsigned glTypeOf(const UniformValue& v) {
     switch (v.index()) {
-        case 0: return GL_FLOAT;
-        case 1: return GL_INT;
-        case 2: return GL_BOOL;
-        case 3: return GL_FLOAT_VEC2;
-        case 4: return GL_FLOAT_VEC3;
-        case 5: return GL_FLOAT_VEC4;
-        case 6: return GL_FLOAT_MAT3;
-        default: return GL_FLOAT_MAT4;
+        case 0:
+            return GL_FLOAT;
+        case 1:
+            return GL_INT;
+        case 2:
+            return GL_BOOL;
+        case 3:
+            return GL_FLOAT_VEC2;
+        case 4:
+            return GL_FLOAT_VEC3;
+        case 5:
+            return GL_FLOAT_VEC4;
+        case 6:
+            return GL_FLOAT_MAT3;
+        default:
+            return GL_FLOAT_MAT4;
     }
 }
 
 const char* glslTypeName(unsigned type) {
     switch (type) {
-        case GL_FLOAT: return "float";
-        case GL_INT: return "int";
-        case GL_BOOL: return "bool";
-        case GL_FLOAT_VEC2: return "vec2";
-        case GL_FLOAT_VEC3: return "vec3";
-        case GL_FLOAT_VEC4: return "vec4";
-        case GL_FLOAT_MAT3: return "mat3";
-        case GL_FLOAT_MAT4: return "mat4";
-        case GL_SAMPLER_2D: return "sampler2D";
-        case GL_SAMPLER_CUBE: return "samplerCube";
-        default: return "another type";
+        case GL_FLOAT:
+            return "float";
+        case GL_INT:
+            return "int";
+        case GL_BOOL:
+            return "bool";
+        case GL_FLOAT_VEC2:
+            return "vec2";
+        case GL_FLOAT_VEC3:
+            return "vec3";
+        case GL_FLOAT_VEC4:
+            return "vec4";
+        case GL_FLOAT_MAT3:
+            return "mat3";
+        case GL_FLOAT_MAT4:
+            return "mat4";
+        case GL_SAMPLER_2D:
+            return "sampler2D";
+        case GL_SAMPLER_CUBE:
+            return "samplerCube";
+        default:
+            return "another type";
     }
 }
 
@@ -128,8 +146,10 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& 
     // Mesa:      0:12(5): error: `x' undeclared
     // NVIDIA:    0(12) : error C1008: undefined variable "x"
     // Others:    ERROR: 0:12: 'x' : undeclared identifier
-    static const std::regex mesa(R"(^\s*\d+:(\d+)\((\d+)\):\s*(error|warning)\s*:?\s*(.*)$)", std::regex::icase);
-    static const std::regex nvidia(R"(^\s*\d+\((\d+)\)\s*:\s*(error|warning)\s*\w*\s*:?\s*(.*)$)", std::regex::icase);
+    static const std::regex mesa(R"(^\s*\d+:(\d+)\((\d+)\):\s*(error|warning)\s*:?\s*(.*)$)",
+                                 std::regex::icase);
+    static const std::regex nvidia(R"(^\s*\d+\((\d+)\)\s*:\s*(error|warning)\s*\w*\s*:?\s*(.*)$)",
+                                   std::regex::icase);
     static const std::regex khr(R"(^\s*(ERROR|WARNING)\s*:\s*\d+:(\d+)\s*:?\s*(.*)$)", std::regex::icase);
     std::vector<Diagnostic> out;
     for (const std::string& raw : splitLines(log)) {
@@ -215,7 +235,8 @@ bool ShaderProgram::build(const std::string& vertex_file, const std::string& ver
         glCompileShader(shader);
         GLint ok = GL_FALSE;
         glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-        log.compile_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+        log.compile_us =
+            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
         GLint len = 0;
         glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
         if (len > 1) {
@@ -265,7 +286,8 @@ bool ShaderProgram::build(const std::string& vertex_file, const std::string& ver
         link_log_ = buf;
         // Link errors concern the pair; attribute them to the fragment shader's file with
         // both names in the message when the driver gives no position.
-        for (auto& d : parseInfoLog(link_log_, vertex_file + " + " + fragment_file)) diagnostics_.push_back(d);
+        for (auto& d : parseInfoLog(link_log_, vertex_file + " + " + fragment_file))
+            diagnostics_.push_back(d);
     }
     linked_ = ok == GL_TRUE;
     if (!linked_) return false;
@@ -300,22 +322,29 @@ std::string ShaderProgram::set(const std::string& name, const UniformValue& valu
     const unsigned want = glTypeOf(value);
     const bool int_like = slot->type == GL_INT || slot->type == GL_BOOL;
     if (slot->type != want && !(int_like && (want == GL_INT || want == GL_BOOL))) {
-        return "uniform " + name + " is declared " + glslTypeName(slot->type) + " in the shader but lab.json gives " +
-               glslTypeName(want);
+        return "uniform " + name + " is declared " + glslTypeName(slot->type) +
+               " in the shader but lab.json gives " + glslTypeName(want);
     }
     glUseProgram(program_);
     std::visit(
         [slot](const auto& v) {
             using T = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<T, float>) glUniform1f(slot->location, v);
-            else if constexpr (std::is_same_v<T, int>) glUniform1i(slot->location, v);
-            else if constexpr (std::is_same_v<T, bool>) glUniform1i(slot->location, v ? 1 : 0);
-            else if constexpr (std::is_same_v<T, glm::vec2>) glUniform2fv(slot->location, 1, glm::value_ptr(v));
-            else if constexpr (std::is_same_v<T, glm::vec3>) glUniform3fv(slot->location, 1, glm::value_ptr(v));
-            else if constexpr (std::is_same_v<T, glm::vec4>) glUniform4fv(slot->location, 1, glm::value_ptr(v));
+            if constexpr (std::is_same_v<T, float>)
+                glUniform1f(slot->location, v);
+            else if constexpr (std::is_same_v<T, int>)
+                glUniform1i(slot->location, v);
+            else if constexpr (std::is_same_v<T, bool>)
+                glUniform1i(slot->location, v ? 1 : 0);
+            else if constexpr (std::is_same_v<T, glm::vec2>)
+                glUniform2fv(slot->location, 1, glm::value_ptr(v));
+            else if constexpr (std::is_same_v<T, glm::vec3>)
+                glUniform3fv(slot->location, 1, glm::value_ptr(v));
+            else if constexpr (std::is_same_v<T, glm::vec4>)
+                glUniform4fv(slot->location, 1, glm::value_ptr(v));
             else if constexpr (std::is_same_v<T, glm::mat3>)
                 glUniformMatrix3fv(slot->location, 1, GL_FALSE, glm::value_ptr(v));
-            else glUniformMatrix4fv(slot->location, 1, GL_FALSE, glm::value_ptr(v));
+            else
+                glUniformMatrix4fv(slot->location, 1, GL_FALSE, glm::value_ptr(v));
         },
         value);
     return {};

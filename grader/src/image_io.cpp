@@ -1,6 +1,4 @@
 // PNG input/output for grader::Image through stb_image / stb_image_write (Debian's libstb).
-#include "grader/image.h"
-
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -8,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <vector>
+
+#include "grader/image.h"
 
 namespace grader {
 

@@ -614,7 +614,8 @@ void ssimRow(const double* const* s_moments, const double* const* d_moments, int
         // float division is also several times cheaper).
         const D numerator = (0.5 * (ms2 - md2) + c1) * (0.5 * (var_s - var_d) + c2);
         const D denominator = (0.5 * (ms2 + md2) + c1) * (0.5 * (var_s + var_d) + c2);
-        storeVector(out + x, __builtin_convertvector(numerator, HalfF) / __builtin_convertvector(denominator, HalfF));
+        storeVector(out + x,
+                    __builtin_convertvector(numerator, HalfF) / __builtin_convertvector(denominator, HalfF));
     }
 }
 
@@ -764,7 +765,6 @@ KernelTable makeTable() {
     table.flip_error_row = flipErrorRow;
     return table;
 }
-
 
 }  // namespace
 

@@ -1,10 +1,9 @@
 // report.json and Gradescope results.json; see report.h and docs/report-format.md.
-#include "grader/report.h"
-
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
+
+#include "grader/report.h"
 
 namespace grader {
 
@@ -51,7 +50,8 @@ ReportMetrics metricsFrom(const json& j) {
     ReportMetrics m;
     if (!j.is_object()) return m;
     const bool identical = j.value("identical", false);
-    m.psnr_db = fromNumber(j.value("psnr_db", json()), identical ? std::numeric_limits<double>::infinity() : 0.0);
+    m.psnr_db =
+        fromNumber(j.value("psnr_db", json()), identical ? std::numeric_limits<double>::infinity() : 0.0);
     m.ssim = fromNumber(j.value("ssim", json()), 0.0);
     m.flip_mean = fromNumber(j.value("flip_mean", json()), 0.0);
     m.flip_weighted_median = fromNumber(j.value("flip_weighted_median", json()), 0.0);
@@ -73,8 +73,11 @@ std::string reportToJson(const Report& report) {
     for (const ReportLab& lab : report.labs) {
         json diags = json::array();
         for (const ReportDiagnostic& d : lab.diagnostics)
-            diags.push_back({{"file", d.file}, {"line", d.line}, {"column", d.column},
-                             {"severity", d.severity}, {"message", d.message}});
+            diags.push_back({{"file", d.file},
+                             {"line", d.line},
+                             {"column", d.column},
+                             {"severity", d.severity},
+                             {"message", d.message}});
         json scenes = json::array();
         for (const ReportScene& s : lab.scenes) {
             json passes = json::array();
@@ -89,7 +92,8 @@ std::string reportToJson(const Report& report) {
                               {"score", number(s.score)},
                               {"max_score", number(s.max_score)},
                               {"message", s.message},
-                              {"first_failing_pass", s.first_failing_pass.empty() ? json(nullptr) : json(s.first_failing_pass)},
+                              {"first_failing_pass",
+                               s.first_failing_pass.empty() ? json(nullptr) : json(s.first_failing_pass)},
                               {"metrics", metrics(s.metrics)},
                               {"frame_metrics", metrics(s.frame_metrics)},
                               {"worst_region", box(s.worst_region)},
@@ -198,10 +202,14 @@ std::string reportToGradescope(const Report& report) {
         if (lab.scenes.empty()) {
             std::string output = lab.status + ": " + lab.message;
             for (const ReportDiagnostic& d : lab.diagnostics)
-                output += "\n" + d.file + (d.line ? ":" + std::to_string(d.line) : "") + ": " + d.severity + ": " +
-                          d.message;
-            tests.push_back({{"name", lab.id}, {"score", number(lab.score)}, {"max_score", number(lab.max_score)},
-                             {"status", "failed"}, {"output", output}, {"visibility", "visible"}});
+                output += "\n" + d.file + (d.line ? ":" + std::to_string(d.line) : "") + ": " + d.severity +
+                          ": " + d.message;
+            tests.push_back({{"name", lab.id},
+                             {"score", number(lab.score)},
+                             {"max_score", number(lab.max_score)},
+                             {"status", "failed"},
+                             {"output", output},
+                             {"visibility", "visible"}});
             continue;
         }
         for (const ReportScene& s : lab.scenes) {
@@ -217,10 +225,8 @@ std::string reportToGradescope(const Report& report) {
     char summary[128];
     std::snprintf(summary, sizeof summary, "shaderlab %s: %.2f / %.2f points", report.tool_version.c_str(),
                   report.score, report.max_score);
-    json root = {{"score", number(report.score)},
-                 {"output", summary},
-                 {"visibility", "visible"},
-                 {"tests", tests}};
+    json root = {
+        {"score", number(report.score)}, {"output", summary}, {"visibility", "visible"}, {"tests", tests}};
     return root.dump(2) + "\n";
 }
 

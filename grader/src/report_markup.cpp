@@ -1,10 +1,10 @@
 // JUnit XML and the static HTML report; see report.h. Both are plain text assembled here, with
 // every value from the submission escaped (a diagnostic may contain anything the student wrote).
-#include "grader/report.h"
-
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+
+#include "grader/report.h"
 
 namespace grader {
 
@@ -15,15 +15,27 @@ std::string escapeMarkup(const std::string& s) {
     out.reserve(s.size());
     for (char c : s) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&#39;";
+                break;
             default:
                 // XML 1.0 forbids most control characters, even escaped.
-                if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' && c != '\r') out += '?';
-                else out += c;
+                if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' && c != '\r')
+                    out += '?';
+                else
+                    out += c;
         }
     }
     return out;
@@ -67,8 +79,8 @@ std::string reportToJunit(const Report& report) {
             std::string body = lab.message;
             for (const ReportDiagnostic& d : lab.diagnostics) body += "\n" + diagnosticLine(d);
             x << "    <testcase classname=\"" << escapeMarkup(lab.id) << "\" name=\"build\">\n"
-              << "      <failure type=\"" << escapeMarkup(lab.status) << "\" message=\"" << escapeMarkup(lab.message)
-              << "\">" << escapeMarkup(body) << "</failure>\n    </testcase>\n";
+              << "      <failure type=\"" << escapeMarkup(lab.status) << "\" message=\""
+              << escapeMarkup(lab.message) << "\">" << escapeMarkup(body) << "</failure>\n    </testcase>\n";
         }
         for (const ReportScene& s : lab.scenes) {
             x << "    <testcase classname=\"" << escapeMarkup(lab.id) << "\" name=\"" << escapeMarkup(s.name)
@@ -77,7 +89,8 @@ std::string reportToJunit(const Report& report) {
                 x << "/>\n";
             } else {
                 x << ">\n      <failure type=\"" << escapeMarkup(s.status) << "\" message=\""
-                  << escapeMarkup(s.message) << "\">" << escapeMarkup(s.message) << "</failure>\n    </testcase>\n";
+                  << escapeMarkup(s.message) << "\">" << escapeMarkup(s.message)
+                  << "</failure>\n    </testcase>\n";
             }
         }
         x << "  </testsuite>\n";
@@ -93,20 +106,22 @@ std::string reportToHtml(const Report& report) {
       << "<style>\n"
          "body{font-family:sans-serif;margin:1.5em;background:#fafafa;color:#222}\n"
          "h2{margin-top:2em;border-bottom:1px solid #ccc}\n"
-         ".passed{color:#1a7f37}.failed,.compile_error,.link_error,.timeout,.crashed,.missing{color:#c62828}\n"
+         ".passed{color:#1a7f37}.failed,.compile_error,.link_error,.timeout,.crashed,.missing{color:#c62828}"
+         "\n"
          "table.scene{border-collapse:collapse;margin:0.8em 0}\n"
          "table.scene td{padding:4px;vertical-align:top;text-align:center;font-size:0.85em}\n"
          "img{image-rendering:pixelated;width:256px;border:1px solid #999;background:#000}\n"
          "pre{background:#fff;border:1px solid #ddd;padding:0.6em;overflow:auto}\n"
          "table.metrics td{text-align:left;padding:1px 8px}\n"
          "</style></head><body>\n";
-    h << "<h1>shaderlab report</h1>\n<p>Submission <code>" << escapeMarkup(report.submission) << "</code>, backend "
-      << escapeMarkup(report.backend) << " (" << escapeMarkup(report.renderer) << "). Score <b>"
-      << num(report.score, "%.2f") << " / " << num(report.max_score, "%.2f") << "</b>.</p>\n";
+    h << "<h1>shaderlab report</h1>\n<p>Submission <code>" << escapeMarkup(report.submission)
+      << "</code>, backend " << escapeMarkup(report.backend) << " (" << escapeMarkup(report.renderer)
+      << "). Score <b>" << num(report.score, "%.2f") << " / " << num(report.max_score, "%.2f")
+      << "</b>.</p>\n";
     for (const ReportLab& lab : report.labs) {
         h << "<h2>" << escapeMarkup(lab.id) << ": " << escapeMarkup(lab.title) << " <span class=\""
-          << escapeMarkup(lab.status) << "\">" << escapeMarkup(lab.status) << "</span> " << num(lab.score, "%.2f")
-          << " / " << num(lab.max_score, "%.2f") << "</h2>\n";
+          << escapeMarkup(lab.status) << "\">" << escapeMarkup(lab.status) << "</span> "
+          << num(lab.score, "%.2f") << " / " << num(lab.max_score, "%.2f") << "</h2>\n";
         if (!lab.message.empty()) h << "<p>" << escapeMarkup(lab.message) << "</p>\n";
         if (!lab.diagnostics.empty()) {
             h << "<pre>";
@@ -117,8 +132,8 @@ std::string reportToHtml(const Report& report) {
             h << "<p>Reference images from " << escapeMarkup(lab.reference_source) << ".</p>\n";
         for (const ReportScene& s : lab.scenes) {
             h << "<h3>" << escapeMarkup(s.name) << " <span class=\"" << escapeMarkup(s.status) << "\">"
-              << escapeMarkup(s.status) << "</span> " << num(s.score, "%.2f") << " / " << num(s.max_score, "%.2f")
-              << "</h3>\n";
+              << escapeMarkup(s.status) << "</span> " << num(s.score, "%.2f") << " / "
+              << num(s.max_score, "%.2f") << "</h3>\n";
             if (!s.message.empty()) h << "<p>" << escapeMarkup(s.message) << "</p>\n";
             h << "<table class=\"scene\"><tr><td><img src=\"" << escapeMarkup(s.student_image)
               << "\" alt=\"student\"><br>student</td><td><img src=\"" << escapeMarkup(s.reference_image)
@@ -128,17 +143,20 @@ std::string reportToHtml(const Report& report) {
               << "<tr><td>PSNR</td><td>" << num(s.metrics.psnr_db, "%.2f") << " dB</td></tr>"
               << "<tr><td>SSIM</td><td>" << num(s.metrics.ssim, "%.4f") << "</td></tr>"
               << "<tr><td>FLIP mean</td><td>" << num(s.metrics.flip_mean, "%.4f") << "</td></tr>"
-              << "<tr><td>mismatching</td><td>" << num(100.0 * s.metrics.mismatch_fraction, "%.2f") << " %</td></tr>"
-              << "<tr><td>NaN / Inf</td><td>" << s.metrics.nan_count << " / " << s.metrics.inf_count << "</td></tr>"
+              << "<tr><td>mismatching</td><td>" << num(100.0 * s.metrics.mismatch_fraction, "%.2f")
+              << " %</td></tr>"
+              << "<tr><td>NaN / Inf</td><td>" << s.metrics.nan_count << " / " << s.metrics.inf_count
+              << "</td></tr>"
               << "<tr><td>pixels graded</td><td>" << s.metrics.pixel_count << "</td></tr>";
             if (!s.first_failing_pass.empty())
-                h << "<tr><td>first failing pass</td><td>" << escapeMarkup(s.first_failing_pass) << "</td></tr>";
+                h << "<tr><td>first failing pass</td><td>" << escapeMarkup(s.first_failing_pass)
+                  << "</td></tr>";
             h << "</table></td></tr></table>\n";
             if (s.passes.size() > 1) {
                 h << "<table class=\"scene\"><tr>";
                 for (const ReportPass& p : s.passes)
-                    h << "<td><img src=\"" << escapeMarkup(p.student_image) << "\" alt=\"" << escapeMarkup(p.name)
-                      << "\"><br>" << escapeMarkup(p.name) << " <span class=\""
+                    h << "<td><img src=\"" << escapeMarkup(p.student_image) << "\" alt=\""
+                      << escapeMarkup(p.name) << "\"><br>" << escapeMarkup(p.name) << " <span class=\""
                       << (p.passed ? "passed\">ok" : "failed\">differs") << "</span></td>";
                 h << "</tr></table>\n";
             }

@@ -61,7 +61,8 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
                         const Thresholds& thresholds) {
     ImageVerdict v;
     if (reference.width != test.width || reference.height != test.height) {
-        v.reasons.push_back(fmt("image is %.0f pixels wide, the reference %.0f", test.width, reference.width));
+        v.reasons.push_back(
+            fmt("image is %.0f pixels wide, the reference %.0f", test.width, reference.width));
         return v;
     }
     const NonFiniteResult nf = scanNonFinite(test);
@@ -90,19 +91,27 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
     FlipResult flip;
     v.covered = measure(ref8, test8, &covered, thresholds.pixel_tolerance, &cmp, &flip);
     // When every pixel is graded anyway the whole-frame numbers are the same: skip the work.
-    v.frame = covered.count() == n ? v.covered
-                                   : measure(ref8, test8, nullptr, thresholds.pixel_tolerance, nullptr, nullptr);
+    v.frame = covered.count() == n
+                  ? v.covered
+                  : measure(ref8, test8, nullptr, thresholds.pixel_tolerance, nullptr, nullptr);
     v.worst = cmp.worst;
     v.mismatches = std::move(cmp.mismatches);
     v.flip_map = std::move(flip.error_map);
 
     v.checks_met = 0;
-    if (v.covered.psnr_db >= thresholds.psnr_min_db) ++v.checks_met;
-    else v.reasons.push_back(fmt("PSNR %.1f dB is below %.1f dB", v.covered.psnr_db, thresholds.psnr_min_db));
-    if (v.covered.ssim >= thresholds.ssim_min) ++v.checks_met;
-    else v.reasons.push_back(fmt("SSIM %.3f is below %.3f", v.covered.ssim, thresholds.ssim_min));
-    if (v.covered.flip_mean <= thresholds.flip_mean_max) ++v.checks_met;
-    else v.reasons.push_back(fmt("FLIP mean %.3f is above %.3f", v.covered.flip_mean, thresholds.flip_mean_max));
+    if (v.covered.psnr_db >= thresholds.psnr_min_db)
+        ++v.checks_met;
+    else
+        v.reasons.push_back(fmt("PSNR %.1f dB is below %.1f dB", v.covered.psnr_db, thresholds.psnr_min_db));
+    if (v.covered.ssim >= thresholds.ssim_min)
+        ++v.checks_met;
+    else
+        v.reasons.push_back(fmt("SSIM %.3f is below %.3f", v.covered.ssim, thresholds.ssim_min));
+    if (v.covered.flip_mean <= thresholds.flip_mean_max)
+        ++v.checks_met;
+    else
+        v.reasons.push_back(
+            fmt("FLIP mean %.3f is above %.3f", v.covered.flip_mean, thresholds.flip_mean_max));
     if (v.covered.mismatch_fraction <= thresholds.mismatch_max) {
         ++v.checks_met;
     } else {

@@ -21,7 +21,7 @@ struct GlInfo {
 };
 
 class GlContext {
-public:
+  public:
     virtual ~GlContext() = default;
     virtual const char* backend() const = 0;
     // Makes this context current on the calling thread and points the GL loader at it again
@@ -29,7 +29,7 @@ public:
     virtual bool makeCurrent() = 0;
     const GlInfo& info() const { return info_; }
 
-protected:
+  protected:
     GlInfo info_;
 };
 

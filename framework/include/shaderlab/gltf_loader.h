@@ -4,9 +4,9 @@
 // Errors and warnings are returned separately (as tinygltf does); nothing is printed.
 #pragma once
 
-#include "shaderlab/scene.h"
-
 #include <string>
+
+#include "shaderlab/scene.h"
 
 namespace shaderlab {
 

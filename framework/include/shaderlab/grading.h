@@ -5,22 +5,22 @@
 // data; writing report files is the caller's (see grader/report.h).
 #pragma once
 
-#include "grader/report.h"
-#include "shaderlab/gl_context.h"
-#include "shaderlab/isolated_render.h"
-
 #include <functional>
 #include <string>
 #include <vector>
+
+#include "grader/report.h"
+#include "shaderlab/gl_context.h"
+#include "shaderlab/isolated_render.h"
 
 namespace shaderlab {
 
 struct GradeOptions {
     Backend backend = Backend::OSMesa;
-    std::string labs_root;       // where lab.json files live
-    std::string reference_root;  // folder mirroring labs/ with reference shaders; empty or absent: goldens
+    std::string labs_root;          // where lab.json files live
+    std::string reference_root;     // folder mirroring labs/ with reference shaders; empty or absent: goldens
     std::vector<std::string> labs;  // empty: every lab under labs_root
-    std::string out_dir;         // images go to out_dir/<lab>/<scene>/
+    std::string out_dir;            // images go to out_dir/<lab>/<scene>/
     IsolationLimits limits;
 };
 

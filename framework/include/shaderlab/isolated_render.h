@@ -5,10 +5,10 @@
 // private temporary folder. POSIX only.
 #pragma once
 
+#include <string>
+
 #include "shaderlab/gl_context.h"
 #include "shaderlab/renderer.h"
-
-#include <string>
 
 namespace shaderlab {
 
@@ -16,14 +16,14 @@ enum class IsolatedStatus { Ok, Missing, CompileError, LinkError, RenderError, T
 const char* isolatedStatusName(IsolatedStatus status);
 
 struct IsolationLimits {
-    double timeout_s = 60.0;                      // wall clock for the whole lab
+    double timeout_s = 60.0;                          // wall clock for the whole lab
     std::size_t memory_bytes = std::size_t(6) << 30;  // RLIMIT_AS of the child (llvmpipe reserves a lot)
 };
 
 struct IsolatedRender {
     IsolatedStatus status = IsolatedStatus::Ok;
     std::string message;
-    LabRender render;  // scenes and diagnostics as the child produced them
+    LabRender render;      // scenes and diagnostics as the child produced them
     std::string renderer;  // GL_RENDERER and GL_VERSION the child saw
     double wall_ms = 0.0;
 };

@@ -5,7 +5,6 @@
 #pragma once
 
 #include <glm/glm.hpp>
-
 #include <map>
 #include <optional>
 #include <string>
@@ -53,9 +52,9 @@ struct TargetSpec {
 
 // A sampler uniform fed by an earlier pass's target or by an image file of the lab.
 struct PassInput {
-    std::string sampler;  // GLSL uniform name, e.g. "u_scene"
-    std::string from_pass;     // target name of an earlier pass, or empty
-    std::string texture_file;  // path relative to the lab folder, or empty (exactly one is set)
+    std::string sampler;                  // GLSL uniform name, e.g. "u_scene"
+    std::string from_pass;                // target name of an earlier pass, or empty
+    std::string texture_file;             // path relative to the lab folder, or empty (exactly one is set)
     std::optional<TextureFilter> filter;  // overrides the target's filter
     std::optional<TextureWrap> wrap;
 };
@@ -88,8 +87,8 @@ struct CameraOverride {
 };
 
 struct LightSpec {
-    std::string type = "point";  // "point" | "directional"
-    glm::vec3 position{0.0f};    // point
+    std::string type = "point";              // "point" | "directional"
+    glm::vec3 position{0.0f};                // point
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional: the direction light travels
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
@@ -109,17 +108,17 @@ struct GradingSpec {
     float psnr_min_db = 30.0f;  // a scene passes when every threshold holds
     float ssim_min = 0.95f;
     float flip_mean_max = 0.05f;
-    float mismatch_max = 0.01f;  // fraction of covered pixels
+    float mismatch_max = 0.01f;     // fraction of covered pixels
     float pixel_tolerance = 0.05f;  // per-channel tolerance of the shift-tolerant comparison
 };
 
 struct LabSpec {
     int schema = 1;
-    std::string id;     // equals the lab folder's name, e.g. "01-phong"
+    std::string id;  // equals the lab folder's name, e.g. "01-phong"
     std::string title;
-    std::string lab_dir;     // absolute path of the lab folder (filled by the parser)
-    std::string labs_root;   // its parent, where scene paths are resolved
-    int width = 256, height = 256;  // lab resolution
+    std::string lab_dir;                     // absolute path of the lab folder (filled by the parser)
+    std::string labs_root;                   // its parent, where scene paths are resolved
+    int width = 256, height = 256;           // lab resolution
     std::vector<std::string> student_files;  // files a submission provides, e.g. phong.vert
     std::vector<PassSpec> passes;
     std::vector<SceneSpec> scenes;

@@ -5,14 +5,14 @@
 // it in a child process when the shaders are a submission's.
 #pragma once
 
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "grader/image.h"
 #include "shaderlab/lab_spec.h"
 #include "shaderlab/scene.h"
 #include "shaderlab/shader_program.h"
-
-#include <memory>
-#include <string>
-#include <vector>
 
 namespace shaderlab {
 
@@ -25,7 +25,7 @@ struct PassImage {
     std::string pass;    // pass name
     std::string target;  // target name
     bool graded = false;
-    grader::Image color;               // RGBA float, top row first, NaN/Inf preserved
+    grader::Image color;                 // RGBA float, top row first, NaN/Inf preserved
     std::vector<std::uint8_t> coverage;  // 1 where scene geometry wrote depth; all 1 for fullscreen
 };
 
@@ -37,13 +37,13 @@ struct SceneRender {
 
 struct LabRender {
     RenderStatus status = RenderStatus::Ok;
-    std::string message;                   // one line a person reads first
-    std::vector<Diagnostic> diagnostics;   // compile/link logs and uniform warnings
+    std::string message;                  // one line a person reads first
+    std::vector<Diagnostic> diagnostics;  // compile/link logs and uniform warnings
     std::vector<SceneRender> scenes;
 };
 
 struct RenderOptions {
-    bool keep_all_passes = false;  // read back ungraded passes too (debugging a multi-pass lab)
+    bool keep_all_passes = false;          // read back ungraded passes too (debugging a multi-pass lab)
     std::vector<std::string> only_scenes;  // empty: all scenes of the lab
 };
 

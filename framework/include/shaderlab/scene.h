@@ -4,9 +4,8 @@
 // need them, and the shading is the student's.
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 
@@ -53,7 +52,7 @@ enum class LightType { Directional, Point, Spot };
 // KHR_lights_punctual, resolved into world space.
 struct Light {
     LightType type = LightType::Point;
-    glm::vec3 position{0.0f};             // world space (point, spot)
+    glm::vec3 position{0.0f};                // world space (point, spot)
     glm::vec3 direction{0.0f, 0.0f, -1.0f};  // world space, the direction the light travels
     glm::vec3 color{1.0f};
     float intensity = 1.0f;

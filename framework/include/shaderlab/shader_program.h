@@ -5,19 +5,19 @@
 // source-string number. This file does not decide what a failure is worth: the grader does.
 #pragma once
 
-#include "shaderlab/lab_spec.h"
-
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "shaderlab/lab_spec.h"
+
 namespace shaderlab {
 
 struct Diagnostic {
-    std::string file;  // the student's file as named in lab.json, e.g. "phong.frag"
-    int line = 0;      // 1-based, in the student's file; 0 when the driver gave none
-    int column = 0;    // 0 when unknown
+    std::string file;      // the student's file as named in lab.json, e.g. "phong.frag"
+    int line = 0;          // 1-based, in the student's file; 0 when the driver gave none
+    int column = 0;        // 0 when unknown
     std::string severity;  // "error" or "warning"
     std::string message;
 };
@@ -52,7 +52,7 @@ struct UniformSlot {
 };
 
 class ShaderProgram {
-public:
+  public:
     ShaderProgram() = default;
     ~ShaderProgram();
     ShaderProgram(const ShaderProgram&) = delete;
@@ -62,8 +62,8 @@ public:
 
     // Builds from two prepared sources. Returns false on a compile or link error; logs and
     // diagnostics are filled either way (warnings too).
-    bool build(const std::string& vertex_file, const std::string& vertex_text, const std::string& fragment_file,
-               const std::string& fragment_text);
+    bool build(const std::string& vertex_file, const std::string& vertex_text,
+               const std::string& fragment_file, const std::string& fragment_text);
 
     bool compiled() const { return compiled_; }
     bool linked() const { return linked_; }
@@ -77,7 +77,7 @@ public:
     // Sets a lab.json value; returns a message when the shader declares another type.
     std::string set(const std::string& name, const UniformValue& value) const;
 
-private:
+  private:
     void release();
     unsigned program_ = 0;
     bool compiled_ = false, linked_ = false;

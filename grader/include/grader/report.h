@@ -3,10 +3,10 @@
 // grade. Image paths in the report are relative to the report's folder.
 #pragma once
 
-#include "grader/mask.h"
-
 #include <string>
 #include <vector>
+
+#include "grader/mask.h"
 
 namespace grader {
 

@@ -8,13 +8,13 @@
 // for information, over the whole frame.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "grader/compare.h"
 #include "grader/image.h"
 #include "grader/mask.h"
 #include "grader/metrics.h"
-
-#include <string>
-#include <vector>
 
 namespace grader {
 
@@ -46,7 +46,7 @@ struct ImageVerdict {
     MetricSet covered;  // what the verdict uses
     MetricSet frame;    // whole frame, reported for information
     std::size_t covered_pixels = 0;
-    WorstRegion worst;  // of the shift-tolerant comparison over covered pixels
+    WorstRegion worst;                     // of the shift-tolerant comparison over covered pixels
     int checks_met = 0, checks_total = 4;  // of psnr, ssim, flip, mismatch
     // For the diff picture: FLIP error per pixel (whole frame) and the mismatching pixels.
     std::vector<float> flip_map;
