@@ -59,7 +59,10 @@ TEST_P(BundledSubmission, GradesAsExpected) {
     std::string args = "grade " + submission.string() + " --out " + out.string() + " --timeout 5";
     for (const auto& [lab, _] : expected.items()) args += " --lab " + lab;
     const CliRun run = runCli(args);
-    ASSERT_EQ(run.exit_code, 0) << run.output;
+    // 0 when every lab passed, 1 when one did not; either way the report is written.
+    bool all_pass = true;
+    for (const auto& [lab, want] : expected.items()) all_pass = all_pass && want["status"] == "passed";
+    ASSERT_EQ(run.exit_code, all_pass ? 0 : 1) << run.output;
 
     const json report = readJson(out / "report.json");
     ASSERT_FALSE(report.is_discarded()) << run.output;
@@ -153,10 +156,32 @@ TEST(CliExitCodes, SymlinkOutOfTheSubmissionIsRefused) {
     fs::create_symlink("/etc/passwd", sub / "01-phong/phong.frag");
     const fs::path out = scratch("symlink_out");
     const CliRun run = runCli("grade " + sub.string() + " --out " + out.string() + " --lab 01-phong");
-    ASSERT_EQ(run.exit_code, 0) << run.output;
+    ASSERT_EQ(run.exit_code, 1) << run.output;
     const json report = readJson(out / "report.json");
     EXPECT_EQ(report["labs"][0]["status"], "missing");
     EXPECT_NE(report["labs"][0]["message"].get<std::string>().find("outside"), std::string::npos);
+}
+
+// A lab folder that is itself a symlink to the reference solution must not earn its points.
+TEST(CliExitCodes, SymlinkedLabFolderIsRefused) {
+    const fs::path sub = scratch("symlinked_lab");
+    fs::create_directories(sub);
+    fs::create_directory_symlink(fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions/01-phong", sub / "01-phong");
+    const fs::path out = scratch("symlinked_lab_out");
+    const CliRun run = runCli("grade " + sub.string() + " --out " + out.string() + " --lab 01-phong");
+    ASSERT_EQ(run.exit_code, 1) << run.output;
+    const json report = readJson(out / "report.json");
+    EXPECT_EQ(report["labs"][0]["status"], "missing");
+    EXPECT_DOUBLE_EQ(report["labs"][0]["score"].get<double>(), 0.0);
+}
+
+TEST(CliExitCodes, UnknownLabOrBadLimitsExitTwo) {
+    const std::string ref = (fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions").string();
+    const std::string out = scratch("unknown_lab").string();
+    EXPECT_EQ(runCli("grade " + ref + " --out " + out + " --lab 99-nope").exit_code, 2);
+    EXPECT_EQ(runCli("grade " + ref + " --out " + out + " --labs /no/such/labs").exit_code, 2);
+    EXPECT_EQ(runCli("grade " + ref + " --out " + out + " --timeout 0").exit_code, 2);
+    EXPECT_EQ(runCli("grade " + ref + " --out " + out + " --timeout -3").exit_code, 2);
 }
 
 // A two-pass lab (lit scene, then a fullscreen greyscale pass reading it): the report names the
@@ -178,7 +203,7 @@ TEST(CliMultiPass, ReportNamesTheFirstWrongPass) {
         const fs::path out = scratch(std::string("multipass_") + c.submission);
         const CliRun run = runCli("grade " + (data / c.submission).string() + " --labs " + labs.string() +
                                   " --reference " + (data / "reference").string() + " --out " + out.string());
-        ASSERT_EQ(run.exit_code, 0) << run.output;
+        ASSERT_EQ(run.exit_code, c.first_failing_pass ? 1 : 0) << run.output;
         const json report = readJson(out / "report.json");
         const json& scene = report["labs"][0]["scenes"][0];
         EXPECT_EQ(scene["status"], c.status) << c.submission << "\n" << scene.dump(2);

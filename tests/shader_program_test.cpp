@@ -129,3 +129,38 @@ TEST_F(ShaderProgramTest, UniformTypeMismatchIsReported) {
 }
 
 }  // namespace
+
+namespace {
+
+// The same mistake on line 6, under every way of starting the file.
+class LineMappingTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(LineMappingTest, ErrorOnLineSixIsReportedOnLineSix) {
+    std::string err;
+    ASSERT_NE(shaderlab::testing::sharedContext(shaderlab::Backend::OSMesa, &err), nullptr) << err;
+    const std::string frag = std::string(GetParam()) +  // line 1
+                             "out vec4 o_color;\n"      // 2
+                             "uniform float u_gain;\n"  // 3
+                             "void main() {\n"          // 4
+                             "    float x = u_gain;\n"  // 5
+                             "    o_color = vec4(y, 1.0);\n"  // 6
+                             "}\n";
+    shaderlab::ShaderProgram p;
+    EXPECT_FALSE(p.build("tri.vert", kVertex, "tri.frag", frag));
+    ASSERT_FALSE(p.diagnostics().empty());
+    EXPECT_EQ(p.diagnostics().front().line, 6) << p.stages().back().info_log;
+}
+
+INSTANTIATE_TEST_SUITE_P(Versions, LineMappingTest,
+                         ::testing::Values("#version 330 core\n", "#version 450 core\n", "#version 150\n",
+                                           "#version 140\n", "\xEF\xBB\xBF#version 330 core\n",
+                                           "// no version directive\n"));
+
+TEST(ParseInfoLog, MesaPreprocessorErrorsKeepTheirLine) {
+    const auto d = shaderlab::parseInfoLog("0:4(1): preprocessor error: #error boom\n", "a.frag");
+    ASSERT_EQ(d.size(), 1u);
+    EXPECT_EQ(d[0].line, 4);
+    EXPECT_EQ(d[0].severity, "error");
+}
+
+}  // namespace

@@ -13,6 +13,8 @@
 #include "grader/report.h"
 #include "grader/scoring.h"
 #include "shaderlab/grading.h"
+#include "shaderlab/lab_catalog.h"
+#include "shaderlab/lab_spec.h"
 #include "shaderlab/paths.h"
 
 namespace fs = std::filesystem;
@@ -90,6 +92,45 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
 
 }  // namespace
 
+namespace {
+
+// The labs a command works on, each checked before any rendering: an unknown lab or a broken
+// lab.json is the command's problem (exit 2), not something to grade.
+bool selectLabs(const CommonOptions& common, const std::vector<std::string>& wanted, std::string* labs_root,
+                std::vector<std::string>* ids) {
+    *labs_root = labsRootOf(common);
+    *ids = wanted.empty() ? listLabIds(*labs_root) : wanted;
+    if (ids->empty()) {
+        std::cerr << "shaderlab: no labs found in " << *labs_root << "\n";
+        return false;
+    }
+    bool ok = true;
+    for (const std::string& id : *ids) {
+        const LabSpecResult parsed = parseLabSpec((fs::path(*labs_root) / id).string());
+        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
+        ok = ok && parsed.ok;
+    }
+    return ok;
+}
+
+bool writeReports(const grader::Report& report, const fs::path& out, const std::vector<std::string>& formats) {
+    bool ok = writeText(out / "report.json", grader::reportToJson(report));
+    ok = writeText(out / "report.html", grader::reportToHtml(report)) && ok;
+    for (const std::string& f : formats) {
+        if (f == "gradescope") ok = writeText(out / "results.json", grader::reportToGradescope(report)) && ok;
+        if (f == "junit") ok = writeText(out / "report.junit.xml", grader::reportToJunit(report)) && ok;
+    }
+    return ok;
+}
+
+bool allPassed(const grader::Report& report) {
+    for (const grader::ReportLab& lab : report.labs)
+        if (lab.status != "passed") return false;
+    return !report.labs.empty();
+}
+
+}  // namespace
+
 int runGrade(const GradeArgs& args) {
     std::error_code ec;
     if (!fs::is_directory(args.submission, ec)) {
@@ -98,85 +139,64 @@ int runGrade(const GradeArgs& args) {
     }
     GradeOptions options;
     parseBackend(args.common.backend, &options.backend);
-    options.labs_root = labsRootOf(args.common);
-    options.labs = args.common.labs;
+    if (!selectLabs(args.common, args.common.labs, &options.labs_root, &options.labs)) return 2;
     options.out_dir = args.out_dir;
     options.limits.timeout_s = args.timeout_s;
     if (!args.no_reference)
         options.reference_root =
             args.reference_root.empty() ? defaultReferenceRoot(options.labs_root) : args.reference_root;
-    fs::create_directories(args.out_dir, ec);
-    if (ec) {
-        std::cerr << "shaderlab: " << args.out_dir << ": cannot create the output folder: " << ec.message()
-                  << "\n";
+    const fs::path out = args.out_dir;
+    fs::create_directories(out, ec);
+    if (ec || !fs::is_directory(out, ec)) {
+        std::cerr << "shaderlab: " << out.string() << ": cannot create the output folder\n";
         return 2;
     }
 
-    const fs::path out = args.out_dir;
-    grader::Report report;
-    report.tool_version = SHADERLAB_VERSION;
-    // The report is rewritten after every lab, so an interrupted run keeps what it finished.
-    auto write_all = [&](const grader::Report& r) {
-        bool ok = writeText(out / "report.json", grader::reportToJson(r));
-        ok = writeText(out / "report.html", grader::reportToHtml(r)) && ok;
-        for (const std::string& f : args.formats) {
-            if (f == "gradescope") ok = writeText(out / "results.json", grader::reportToGradescope(r)) && ok;
-            if (f == "junit") ok = writeText(out / "report.junit.xml", grader::reportToJunit(r)) && ok;
-        }
-        return ok;
-    };
-    grader::Report partial;
-    partial.tool_version = SHADERLAB_VERSION;
-    partial.submission = args.submission;
-    partial.backend = args.common.backend;
-    report = gradeSubmission(args.submission, options, [&](const grader::ReportLab& lab) {
-        printLab(lab, false);
-        partial.labs.push_back(lab);
-        partial.score += lab.score;
-        partial.max_score += lab.max_score;
-        write_all(partial);
+    // The reports are rewritten after every lab, so an interrupted run keeps what it finished.
+    bool written = true;
+    grader::Report report = gradeSubmission(args.submission, options, [&](const grader::Report& so_far) {
+        printLab(so_far.labs.back(), false);
+        grader::Report r = so_far;
+        r.tool_version = SHADERLAB_VERSION;
+        written = writeReports(r, out, args.formats);
     });
     report.tool_version = SHADERLAB_VERSION;
-    if (!write_all(report)) {
-        std::cerr << "shaderlab: cannot write the report into " << out.string() << "\n";
+    if (!written || !writeReports(report, out, args.formats)) {
+        std::cerr << "shaderlab: cannot write the reports into " << out.string() << "\n";
         return 2;
     }
     std::printf("score %.2f / %.2f\nreport: %s\n", report.score, report.max_score,
                 fs::absolute(out / "report.json").string().c_str());
     std::printf("        %s\n", fs::absolute(out / "report.html").string().c_str());
-    return 0;
+    return allPassed(report) ? 0 : 1;
 }
 
 int runCheck(const CheckArgs& args) {
     GradeOptions options;
     parseBackend(args.common.backend, &options.backend);
-    options.labs_root = labsRootOf(args.common);
-    options.labs = {args.lab};
+    if (!selectLabs(args.common, {args.lab}, &options.labs_root, &options.labs)) return 2;
     options.limits.timeout_s = args.timeout_s;
     if (!args.no_reference) options.reference_root = defaultReferenceRoot(options.labs_root);
-    std::error_code ec;
-    if (!fs::is_regular_file(fs::path(options.labs_root) / args.lab / "lab.json", ec)) {
-        std::cerr << "shaderlab: no lab '" << args.lab << "' in " << options.labs_root << "\n";
-        return 2;
-    }
     const std::string submission = args.submission.empty() ? options.labs_root : args.submission;
     options.out_dir = args.out_dir.empty()
                           ? (fs::path(options.labs_root).parent_path() / "out" / "check").string()
                           : args.out_dir;
+    std::error_code ec;
     fs::create_directories(options.out_dir, ec);
-    const grader::Report report = gradeSubmission(submission, options);
-    grader::Report with_version = report;
-    with_version.tool_version = SHADERLAB_VERSION;
-    writeText(fs::path(options.out_dir) / "report.json", grader::reportToJson(with_version));
-    writeText(fs::path(options.out_dir) / "report.html", grader::reportToHtml(with_version));
-    bool all_passed = !report.labs.empty();
-    for (const grader::ReportLab& lab : report.labs) {
-        printLab(lab, true);
-        all_passed = all_passed && lab.status == "passed";
+    if (ec || !fs::is_directory(options.out_dir, ec)) {
+        std::cerr << "shaderlab: " << options.out_dir << ": cannot create the output folder\n";
+        return 2;
+    }
+    grader::Report report = gradeSubmission(submission, options);
+    report.tool_version = SHADERLAB_VERSION;
+    for (const grader::ReportLab& lab : report.labs) printLab(lab, true);
+    if (!writeReports(report, options.out_dir, {})) {
+        std::cerr << "shaderlab: cannot write the report into " << options.out_dir << "\n";
+        return 2;
     }
     std::printf("images and report: %s\n",
                 fs::absolute(fs::path(options.out_dir) / "report.html").string().c_str());
-    return all_passed ? 0 : 1;
+    return allPassed(report) ? 0 : 1;
 }
 
 int runCompare(const CompareArgs& args) {
@@ -209,7 +229,7 @@ int runCompare(const CompareArgs& args) {
                                     {"mismatch_fraction", m.mismatch_fraction},
                                     {"pixel_tolerance", args.tolerance},
                                     {"nan_count", v.nan_count}};
-        std::cout << j.dump(2) << "\n";
+        std::cout << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
     } else {
         std::printf(
             "PSNR      %s\nSSIM      %.6f\nFLIP mean %.6f\nmismatch  %.4f%% (tolerance %.3f, 1-pixel shift "

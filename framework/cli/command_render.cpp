@@ -72,6 +72,7 @@ int runRender(const RenderArgs& args) {
         }
         RenderOptions options;
         options.keep_all_passes = args.all_passes;
+        options.containment_root = args.submission;
         const LabRender r = renderLab(parsed.spec, (fs::path(args.submission) / id).string(), options);
         printDiagnostics(r, id);
         if (r.status != RenderStatus::Ok) {

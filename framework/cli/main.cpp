@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
                           "reference solutions folder (default: reference_solutions beside labs/)");
     grade_cmd->add_flag("--no-reference", grade.no_reference, "grade against the stored golden images");
     grade_cmd->add_option("--timeout", grade.timeout_s, "seconds one lab may take to render")
+        ->check(CLI::Range(0.1, 86400.0))
         ->capture_default_str();
     add_common(grade_cmd, &grade.common);
 
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
     check_cmd->add_option("--out", check.out_dir, "where images and the report go (default: out/check)");
     check_cmd->add_flag("--no-reference", check.no_reference, "use the stored golden images");
     check_cmd->add_option("--timeout", check.timeout_s, "seconds the lab may take to render")
+        ->check(CLI::Range(0.1, 86400.0))
         ->capture_default_str();
     check_cmd->add_option("--backend", check.common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
     check_cmd->add_option("--labs", check.common.labs_root, "folder holding the labs");
@@ -62,6 +64,7 @@ int main(int argc, char** argv) {
     compare_cmd->add_option("test", compare.b, "test image")->required();
     compare_cmd->add_flag("--json", compare.json, "print JSON");
     compare_cmd->add_option("--tolerance", compare.tolerance, "per-channel tolerance of the mismatch count")
+        ->check(CLI::Range(0.0f, 1.0f))
         ->capture_default_str();
 
     GoldensArgs goldens;
@@ -76,7 +79,12 @@ int main(int argc, char** argv) {
     CLI::App* info_cmd = app.add_subcommand("info", "print the OpenGL context a backend gives");
     info_cmd->add_option("--backend", info_backend)->check(CLI::IsMember({"osmesa", "egl"}));
 
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // CLI11 prints the message; every bad argument is exit code 2 (--help is 0).
+        return app.exit(e) == 0 ? 0 : 2;
+    }
 
     if (render_cmd->parsed()) return runRender(render);
     if (info_cmd->parsed()) return runInfo(info_backend);

@@ -24,6 +24,13 @@ struct ReferenceImages {
     std::map<std::string, std::vector<PassImage>> scenes;
 };
 
+// Renders the lab folder `id` of the submission `root` (student files must stay inside root).
+IsolatedRender renderFrom(const LabSpec& spec, const std::string& root, Backend backend, const IsolationLimits& limits) {
+    RenderOptions options;
+    options.containment_root = root;
+    return renderLabIsolated(spec, (fs::path(root) / spec.id).string(), backend, limits, options);
+}
+
 std::string labStatusOf(IsolatedStatus s) {
     switch (s) {
         case IsolatedStatus::Missing:
@@ -90,8 +97,7 @@ ReferenceImages renderReference(const LabSpec& spec, const std::string& referenc
                                 const GradeOptions& options) {
     ReferenceImages ref;
     ref.source = "reference_solutions";
-    const IsolatedRender r = renderLabIsolated(spec, (fs::path(reference_root) / spec.id).string(),
-                                               options.backend, options.limits);
+    const IsolatedRender r = renderFrom(spec, reference_root, options.backend, options.limits);
     if (r.status != IsolatedStatus::Ok) {
         ref.error = std::string("the reference solution did not render (") + isolatedStatusName(r.status) +
                     "): " + r.message;
@@ -171,7 +177,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
 
     // The student first: a submission that does not build needs no reference at all.
     const IsolatedRender student =
-        renderLabIsolated(spec, (fs::path(submission_dir) / id).string(), options.backend, options.limits);
+        renderFrom(spec, submission_dir, options.backend, options.limits);
     if (!student.renderer.empty()) *renderer = student.renderer;
     for (const Diagnostic& d : student.render.diagnostics)
         lab.diagnostics.push_back({d.file, d.line, d.column, d.severity, d.message});
@@ -203,6 +209,22 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     const fs::path out_dir = options.out_dir;
     std::vector<std::string> write_errors;
 
+    // The reference must match the lab as it is now; a mismatch (goldens older than lab.json)
+    // is the lab's fault, never the student's.
+    for (const SceneRender& scene : student.render.scenes) {
+        const auto it = ref.scenes.find(scene.scene);
+        bool consistent = it != ref.scenes.end() && it->second.size() == scene.passes.size();
+        for (std::size_t i = 0; consistent && i < scene.passes.size(); ++i)
+            consistent = it->second[i].color.width == scene.passes[i].color.width &&
+                         it->second[i].color.height == scene.passes[i].color.height;
+        if (!consistent) {
+            lab.status = "crashed";
+            lab.message = "the reference images (" + ref.source + ") do not match lab.json for scene '" + scene.scene +
+                          "': regenerate them with `shaderlab goldens`";
+            return finish();
+        }
+    }
+
     bool all_passed = true;
     for (const SceneRender& scene : student.render.scenes) {
         grader::ReportScene rs;
@@ -210,13 +232,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         rs.max_score = scene_points;
         rs.render_ms = scene.render_ms;
         const auto ref_it = ref.scenes.find(scene.scene);
-        if (ref_it == ref.scenes.end() || ref_it->second.size() != scene.passes.size()) {
-            rs.status = "failed";
-            rs.message = "no reference image for this scene";
-            all_passed = false;
-            lab.scenes.push_back(std::move(rs));
-            continue;
-        }
+        bool non_finite = false;
         for (std::size_t i = 0; i < scene.passes.size(); ++i) {
             const PassImage& mine = scene.passes[i];
             const PassImage& theirs = ref_it->second[i];
@@ -241,9 +257,11 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             if (!heat.empty())
                 rp.diff_image = writeImage(heat, out_dir, base / ("diff" + suffix + ".png"), &write_errors);
             if (!v.passed && rs.first_failing_pass.empty()) rs.first_failing_pass = mine.pass;
+            // NaN or Inf in any graded pass fails the scene, even when later passes hide it.
+            non_finite = non_finite || v.nan_count > 0 || v.inf_count > 0;
             if (final_image) {
-                rs.status = v.passed ? "passed" : "failed";
-                rs.score = grader::scenePoints(v, scene_points);
+                rs.status = v.passed && !non_finite ? "passed" : "failed";
+                rs.score = non_finite ? 0.0 : grader::scenePoints(v, scene_points);
                 rs.metrics = rp.metrics;
                 rs.frame_metrics = reportMetrics(v.frame, v);
                 rs.worst_region = v.worst.tile;
@@ -252,6 +270,8 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                 rs.reference_image = rp.reference_image;
                 rs.diff_image = rp.diff_image;
                 rs.message = joinReasons(v.reasons);
+                if (non_finite && v.nan_count == 0 && v.inf_count == 0)
+                    rs.message = "NaN or Inf in an earlier pass. " + rs.message;
                 if (!rs.first_failing_pass.empty() && scene.passes.size() > 1)
                     rs.message = "first wrong pass: '" + rs.first_failing_pass + "'. " + rs.message;
             }
@@ -286,8 +306,8 @@ grader::Report gradeSubmission(const std::string& submission_dir, const GradeOpt
         grader::ReportLab lab = gradeLab(submission_dir, id, options, &report.renderer);
         report.score += lab.score;
         report.max_score += lab.max_score;
-        if (on_lab) on_lab(lab);
         report.labs.push_back(std::move(lab));
+        if (on_lab) on_lab(report);
     }
     return report;
 }
@@ -303,8 +323,7 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
             errors.insert(errors.end(), parsed.errors.begin(), parsed.errors.end());
             continue;
         }
-        const IsolatedRender r = renderLabIsolated(parsed.spec, (fs::path(reference_root) / id).string(),
-                                                   backend, IsolationLimits{});
+        const IsolatedRender r = renderFrom(parsed.spec, reference_root, backend, IsolationLimits{});
         if (r.status != IsolatedStatus::Ok) {
             errors.push_back(id + ": reference solution: " + isolatedStatusName(r.status) + ": " + r.message);
             continue;

@@ -1,10 +1,12 @@
 // Child-process rendering; see isolated_render.h.
 #include "shaderlab/isolated_render.h"
 
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -23,6 +25,26 @@ namespace shaderlab {
 
 namespace {
 
+// The render child in flight, so that a grader stopped by SIGTERM or SIGINT takes it along.
+volatile sig_atomic_t g_render_child = 0;
+
+void stopChildAndDie(int sig) {
+    if (g_render_child > 0) kill(static_cast<pid_t>(g_render_child), SIGKILL);
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+void installStopHandlers() {
+    static bool installed = false;
+    if (installed) return;
+    installed = true;
+    for (int sig : {SIGTERM, SIGINT, SIGHUP}) {
+        struct sigaction current {};
+        sigaction(sig, nullptr, &current);
+        if (current.sa_handler == SIG_DFL) signal(sig, stopChildAndDie);  // respect a caller's own handler
+    }
+}
+
 bool writeBytes(const fs::path& p, const void* data, std::size_t n) {
     std::ofstream out(p, std::ios::binary);
     out.write(static_cast<const char*>(data), static_cast<std::streamsize>(n));
@@ -40,10 +62,19 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
 // Child side: render, then write result.json and one raw file per image. Never returns.
 [[noreturn]] void childMain(const LabSpec& spec, const std::string& shader_dir, Backend backend,
                             const IsolationLimits& limits, const RenderOptions& options,
-                            const fs::path& dir) {
+                            const fs::path& dir, pid_t parent_pid) {
+    // Die with the grader: a parent killed by a batch system's time limit must not leave a
+    // child spinning on a shader. If it is already gone, stop now.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent_pid) _exit(1);
     rlimit as{};
     as.rlim_cur = as.rlim_max = limits.memory_bytes;
     setrlimit(RLIMIT_AS, &as);
+    // A backstop should the parent's clock fail: CPU seconds of all the driver's threads.
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    rlimit cpu{};
+    cpu.rlim_cur = cpu.rlim_max = static_cast<rlim_t>(limits.timeout_s * threads + 10.0);
+    setrlimit(RLIMIT_CPU, &cpu);
     rlimit core{};  // a crashing driver should not litter core files
     setrlimit(RLIMIT_CORE, &core);
 
@@ -85,7 +116,8 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
         }
         result["scenes"] = scenes;
     }
-    const std::string text = result.dump();
+    // Shader logs may hold any bytes the student typed: replace invalid UTF-8 rather than throw.
+    const std::string text = result.dump(-1, ' ', false, json::error_handler_t::replace);
     writeBytes(dir / "result.json.tmp", text.data(), text.size());
     std::error_code ec;
     fs::rename(dir / "result.json.tmp", dir / "result.json", ec);
@@ -188,19 +220,29 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
         return out;
     }
     const fs::path dir = tmpl;
+    installStopHandlers();
     const auto t0 = std::chrono::steady_clock::now();
     std::fflush(nullptr);  // buffered output would otherwise be written twice
+    // An inherited SIG_IGN for SIGCHLD would make the kernel reap the child itself and waitpid
+    // fail; the default disposition is restored around the render.
+    struct sigaction dfl {}, old_chld {};
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    sigaction(SIGCHLD, &dfl, &old_chld);
+    const pid_t parent_pid = getpid();
     const pid_t pid = fork();
     if (pid < 0) {
+        sigaction(SIGCHLD, &old_chld, nullptr);
         out.status = IsolatedStatus::RenderError;
         out.message = std::string("fork failed: ") + std::strerror(errno);
         fs::remove_all(dir);
         return out;
     }
-    if (pid == 0) childMain(spec, shader_dir, backend, limits, options, dir);
+    if (pid == 0) childMain(spec, shader_dir, backend, limits, options, dir, parent_pid);
+    g_render_child = pid;
 
     int wstatus = 0;
-    bool finished = false;
+    bool finished = false, lost = false;
     // Poll rather than block: the parent must be able to give up on a child that never ends.
     while (true) {
         const pid_t r = waitpid(pid, &wstatus, WNOHANG);
@@ -208,10 +250,22 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
             finished = true;
             break;
         }
+        if (r < 0 && errno != EINTR) {  // reaped elsewhere: judge by what it left behind
+            finished = lost = true;
+            break;
+        }
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (elapsed > limits.timeout_s) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(elapsed < 1.0 ? 2 : 20));
     }
+    if (!finished) {
+        kill(pid, SIGKILL);
+        // Bounded: a child stuck in the kernel (a GPU driver) may take a while to die.
+        for (int i = 0; i < 500 && waitpid(pid, &wstatus, WNOHANG) == 0; ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    g_render_child = 0;
+    sigaction(SIGCHLD, &old_chld, nullptr);
     out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!finished) {
         kill(pid, SIGKILL);
@@ -221,7 +275,7 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
         std::snprintf(buf, sizeof buf, "%.0f", limits.timeout_s);
         out.message = "rendering did not finish within " + std::string(buf) +
                       " s (an endless loop in a shader?); the process was killed";
-    } else if (WIFSIGNALED(wstatus)) {
+    } else if (!lost && WIFSIGNALED(wstatus)) {
         out.status = IsolatedStatus::Crashed;
         const int sig = WTERMSIG(wstatus);
         out.message = std::string("the render process died of signal ") + std::to_string(sig) + " (" +
@@ -230,8 +284,9 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
             out.message += "; the shader may have crashed the driver or exceeded the memory limit";
     } else if (!readChildResult(dir, &out)) {
         out.status = IsolatedStatus::Crashed;
-        out.message = "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) +
-                      ") without a readable result; out of memory?";
+        out.message = (lost ? std::string("the render process ended")
+                            : "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) + ")") +
+                      " without a readable result; out of memory?";
     }
     if (out.status == IsolatedStatus::Timeout || out.status == IsolatedStatus::Crashed) {
         out.render.status = RenderStatus::RenderError;

@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
+#include <set>
+#include <variant>
 
 #include "shaderlab/gl.h"
 #include "shaderlab/gltf_loader.h"
@@ -237,8 +239,8 @@ Camera resolveCamera(const Scene& scene, const CameraOverride& o) {
 
 struct LightUniforms {
     int count = 0;
-    glm::vec4 position[kMaxLights];  // w = 1: point at xyz; w = 0: xyz points toward the light
-    glm::vec3 color[kMaxLights];     // colour times intensity
+    glm::vec4 position[kMaxLights] = {};  // w = 1: point at xyz; w = 0: xyz points toward the light
+    glm::vec3 color[kMaxLights] = {};     // colour times intensity
 };
 
 LightUniforms resolveLights(const Scene& scene, const SceneSpec& spec, const Camera& camera) {
@@ -263,14 +265,6 @@ LightUniforms resolveLights(const Scene& scene, const SceneSpec& spec, const Cam
     return out;
 }
 
-// Sets a framework uniform when the shader declares it with the right type; framework
-// uniforms the shader does not use are simply skipped.
-void setIfActive(const ShaderProgram& p, const char* name, GLenum type,
-                 const std::function<void(GLint)>& fn) {
-    const UniformSlot* s = p.uniform(name);
-    if (s && s->type == type) fn(s->location);
-}
-
 }  // namespace
 
 const char* renderStatusName(RenderStatus status) {
@@ -288,267 +282,392 @@ const char* renderStatusName(RenderStatus status) {
     }
 }
 
-LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const RenderOptions& options) {
-    LabRender result;
+namespace {
 
-    // 1. Read every student file first: a missing file is reported before any GL work.
-    std::map<std::string, std::string> sources;
-    for (const PassSpec& pass : spec.passes) {
-        for (const std::string* file : {&pass.program.vertex, &pass.program.fragment}) {
-            if (sources.count(*file)) continue;
-            FileText t = readFileInside(shader_dir, *file, kMaxShaderBytes);
-            if (!t.ok) {
-                result.status = RenderStatus::Missing;
-                result.message = t.error;
-                result.diagnostics.push_back({*file, 0, 0, "error", t.error});
-                return result;
-            }
-            sources[*file] = std::move(t.text);
-        }
+// The zero of a lab uniform's type: what a scene-only uniform is reset to in the scenes that do
+// not set it, so no value leaks from one scene into the next.
+UniformValue zeroLike(const UniformValue& v) {
+    return std::visit(
+        [](const auto& x) -> UniformValue {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, glm::mat3> || std::is_same_v<T, glm::mat4>) return T(0.0f);
+            else if constexpr (std::is_same_v<T, bool>) return false;
+            else return T(0);
+        },
+        v);
+}
+
+bool isSampler2D(unsigned type) { return type == GL_SAMPLER_2D; }
+
+// One lab on the current context: the steps of renderLab, each in its own method. Owns every GL
+// object it makes and deletes them when it goes.
+class LabRunner {
+public:
+    LabRunner(const LabSpec& spec, const std::string& shader_dir, const RenderOptions& options,
+              LabRender* out)
+        : spec_(spec), shader_dir_(shader_dir), options_(options), out_(*out) {}
+
+    ~LabRunner() {
+        for (auto& [name, tex] : file_textures_) glDeleteTextures(1, &tex);
+        for (auto& [key, sampler] : samplers_) glDeleteSamplers(1, &sampler);
+        glUseProgram(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
 
-    // 2. Build one program per distinct (vertex, fragment) pair.
-    std::map<std::pair<std::string, std::string>, ShaderProgram> programs;
-    for (const PassSpec& pass : spec.passes) {
-        const auto key = std::make_pair(pass.program.vertex, pass.program.fragment);
-        if (programs.count(key)) continue;
-        ShaderProgram& prog = programs[key];
-        prog.build(key.first, sources[key.first], key.second, sources[key.second]);
-        for (const Diagnostic& d : prog.diagnostics()) result.diagnostics.push_back(d);
-        if (!prog.compiled()) {
-            result.status = RenderStatus::CompileError;
-        } else if (!prog.linked() && result.status == RenderStatus::Ok) {
-            result.status = RenderStatus::LinkError;
-        }
-    }
-    if (result.status != RenderStatus::Ok) {
-        for (const Diagnostic& d : result.diagnostics) {
-            if (d.severity != "error") continue;
-            result.message = d.file + (d.line ? ":" + std::to_string(d.line) : "") + ": " + d.message;
-            break;
-        }
-        if (result.message.empty()) result.message = renderStatusName(result.status);
-        return result;
-    }
+    bool prepare() { return readSources() && buildPrograms() && loadTextures() && createTargets(); }
 
-    // 3. Textures the lab ships, shared by all scenes.
-    std::map<std::string, GLuint> file_textures;
-    auto cleanup_textures = [&file_textures]() {
-        for (auto& [name, tex] : file_textures) glDeleteTextures(1, &tex);
+    bool renderScene(const SceneSpec& scene_spec);
+
+private:
+    struct LoadedScene {
+        Scene scene;
+        std::vector<std::unique_ptr<GpuMesh>> meshes;
     };
-    for (const PassSpec& pass : spec.passes) {
+
+    bool fail(RenderStatus status, const std::string& message) {
+        out_.status = status;
+        out_.message = message;
+        return false;
+    }
+    void warnOnce(const std::string& file, const std::string& message) {
+        if (warned_.insert(file + '\n' + message).second) out_.diagnostics.push_back({file, 0, 0, "warning", message});
+    }
+
+    bool readSources();
+    bool buildPrograms();
+    bool loadTextures();
+    bool createTargets();
+    const LoadedScene* loadScene(const SceneSpec& scene_spec);
+    GLuint sampler(TextureFilter filter, TextureWrap wrap);
+    bool runPass(std::size_t index, const SceneSpec& scene_spec, const LoadedScene* scene, const Camera& camera,
+                 const LightUniforms& lights, SceneRender* scene_out);
+    void setFramework(const ShaderProgram& prog, const std::string& file, const char* name, GLenum type,
+                      const std::function<void(GLint)>& set);
+
+    const LabSpec& spec_;
+    const std::string& shader_dir_;
+    const RenderOptions& options_;
+    LabRender& out_;
+
+    std::map<std::string, std::string> sources_;
+    std::map<std::pair<std::string, std::string>, ShaderProgram> programs_;
+    std::map<std::string, GLuint> file_textures_;
+    std::map<std::pair<int, int>, GLuint> samplers_;
+    std::map<std::string, std::unique_ptr<Target>> targets_;  // by target name
+    std::map<std::string, const TargetSpec*> target_specs_;
+    std::vector<std::string> pass_target_;
+    std::map<std::string, LoadedScene> scenes_;  // by file, meshes uploaded once
+    std::unique_ptr<GpuMesh> fullscreen_;
+    std::map<std::string, UniformValue> scene_uniform_zeros_;
+    std::set<std::string> warned_;
+};
+
+// Student files come from the submission, every other program file from the lab folder: a
+// submission can neither omit nor replace the instructor's shared shaders.
+bool LabRunner::readSources() {
+    const std::string& student_root = options_.containment_root.empty() ? shader_dir_ : options_.containment_root;
+    const std::string prefix =
+        options_.containment_root.empty()
+            ? std::string()
+            : std::filesystem::path(shader_dir_).lexically_relative(options_.containment_root).generic_string() + "/";
+    for (const PassSpec& pass : spec_.passes) {
+        for (const std::string* file : {&pass.program.vertex, &pass.program.fragment}) {
+            if (sources_.count(*file)) continue;
+            const bool student = std::find(spec_.student_files.begin(), spec_.student_files.end(), *file) !=
+                                 spec_.student_files.end();
+            // Resolved against the submission root, so a lab folder that is itself a symlink out
+            // of the submission is refused like a symlinked file.
+            FileText t = student ? readFileInside(student_root, prefix + *file, kMaxShaderBytes)
+                                 : readFileInside(spec_.lab_dir, *file, kMaxShaderBytes);
+            if (!t.ok) {
+                out_.diagnostics.push_back({*file, 0, 0, "error", t.error});
+                return fail(RenderStatus::Missing, t.error);
+            }
+            sources_[*file] = std::move(t.text);
+        }
+    }
+    return true;
+}
+
+bool LabRunner::buildPrograms() {
+    for (const PassSpec& pass : spec_.passes) {
+        const auto key = std::make_pair(pass.program.vertex, pass.program.fragment);
+        if (programs_.count(key)) continue;
+        ShaderProgram& prog = programs_[key];
+        prog.build(key.first, sources_[key.first], key.second, sources_[key.second]);
+        for (const Diagnostic& d : prog.diagnostics()) out_.diagnostics.push_back(d);
+        if (!prog.compiled()) {
+            out_.status = RenderStatus::CompileError;
+        } else if (!prog.linked() && out_.status == RenderStatus::Ok) {
+            out_.status = RenderStatus::LinkError;
+        }
+    }
+    if (out_.status == RenderStatus::Ok) return true;
+    for (const Diagnostic& d : out_.diagnostics) {
+        if (d.severity != "error") continue;
+        out_.message = d.file + (d.line ? ":" + std::to_string(d.line) : "") + ": " + d.message;
+        break;
+    }
+    if (out_.message.empty()) out_.message = renderStatusName(out_.status);
+    return false;
+}
+
+bool LabRunner::loadTextures() {
+    for (const PassSpec& pass : spec_.passes) {
         for (const PassInput& in : pass.inputs) {
-            if (in.texture_file.empty() || file_textures.count(in.texture_file)) continue;
-            const PathResult p = resolveInside(spec.lab_dir, in.texture_file);
+            if (in.texture_file.empty() || file_textures_.count(in.texture_file)) continue;
+            const PathResult p = resolveInside(spec_.lab_dir, in.texture_file);
             grader::Image img;
             std::string err;
-            if (!p.ok || !grader::readPng(p.path, &img, &err)) {
-                result.status = RenderStatus::RenderError;
-                result.message = p.ok ? err : p.error;
-                cleanup_textures();
-                return result;
-            }
-            // Upload as RGBA float with the top row last, as GL expects row 0 at the bottom.
+            if (!p.ok || !grader::readPng(p.path, &img, &err))
+                return fail(RenderStatus::RenderError, p.ok ? err : p.error);
+            // RGBA floats with the top row last: GL's row 0 is the bottom one. Grey fills RGB.
             std::vector<float> rgba(static_cast<std::size_t>(img.width) * img.height * 4, 1.0f);
-            for (int y = 0; y < img.height; ++y)
-                for (int x = 0; x < img.width; ++x)
+            for (int y = 0; y < img.height; ++y) {
+                for (int x = 0; x < img.width; ++x) {
+                    float* dst = &rgba[(static_cast<std::size_t>(img.height - 1 - y) * img.width + x) * 4];
                     for (int c = 0; c < 4; ++c) {
-                        const int src_c = img.channels == 1 ? 0 : c;
-                        if (c < img.channels || (img.channels == 1 && c < 3))
-                            rgba[(static_cast<std::size_t>(img.height - 1 - y) * img.width + x) * 4 + c] =
-                                img.at(x, y, src_c);
+                        if (img.channels == 1 && c < 3) dst[c] = img.at(x, y, 0);
+                        else if (img.channels > 1 && c < img.channels) dst[c] = img.at(x, y, c);
                     }
+                }
+            }
             GLuint tex = 0;
             glGenTextures(1, &tex);
             glBindTexture(GL_TEXTURE_2D, tex);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, img.width, img.height, 0, GL_RGBA, GL_FLOAT,
-                         rgba.data());
-            file_textures[in.texture_file] = tex;
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, img.width, img.height, 0, GL_RGBA, GL_FLOAT, rgba.data());
+            file_textures_[in.texture_file] = tex;
         }
     }
+    return true;
+}
 
-    // 4. Targets, one per pass that owns one; created once and reused for every scene.
-    std::map<std::string, std::unique_ptr<Target>> targets;  // by target name
-    std::map<std::string, const TargetSpec*> target_specs;
-    std::vector<std::string> pass_target(spec.passes.size());
-    std::vector<bool> pass_draws_depth(spec.passes.size(), false);
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        const PassSpec& pass = spec.passes[i];
+bool LabRunner::createTargets() {
+    pass_target_.resize(spec_.passes.size());
+    for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
+        const PassSpec& pass = spec_.passes[i];
         if (!pass.draw_into.empty()) {
             for (std::size_t j = 0; j < i; ++j)
-                if (spec.passes[j].name == pass.draw_into) pass_target[i] = pass_target[j];
+                if (spec_.passes[j].name == pass.draw_into) pass_target_[i] = pass_target_[j];
             continue;
         }
         auto t = std::make_unique<Target>();
         std::string err;
-        if (!createTarget(pass.target, spec.width, spec.height, t.get(), &err)) {
-            result.status = RenderStatus::RenderError;
-            result.message = err;
-            cleanup_textures();
-            return result;
-        }
-        pass_target[i] = pass.target.name;
-        target_specs[pass.target.name] = &pass.target;
-        targets[pass.target.name] = std::move(t);
+        if (!createTarget(pass.target, spec_.width, spec_.height, t.get(), &err))
+            return fail(RenderStatus::RenderError, err);
+        pass_target_[i] = pass.target.name;
+        target_specs_[pass.target.name] = &pass.target;
+        targets_[pass.target.name] = std::move(t);
     }
-    for (std::size_t i = 0; i < spec.passes.size(); ++i)
-        if (spec.passes[i].draw == DrawKind::Scene) pass_draws_depth[i] = true;
+    for (const SceneSpec& s : spec_.scenes)
+        for (const auto& [name, value] : s.uniforms) scene_uniform_zeros_.emplace(name, zeroLike(value));
+    fullscreen_ = fullscreenTriangle();
+    return true;
+}
 
-    const auto fullscreen = fullscreenTriangle();
-    std::map<std::string, Scene> scene_cache;
+const LabRunner::LoadedScene* LabRunner::loadScene(const SceneSpec& scene_spec) {
+    static const LoadedScene kEmpty;
+    if (scene_spec.file.empty()) return &kEmpty;
+    const std::string path = (std::filesystem::path(spec_.labs_root) / scene_spec.file).string();
+    auto it = scenes_.find(path);
+    if (it != scenes_.end()) return &it->second;
+    LoadedScene loaded;
+    const SceneLoadResult r = loadGltfScene(path, &loaded.scene);
+    if (!r.ok) {
+        fail(RenderStatus::RenderError, r.error);
+        return nullptr;
+    }
+    for (const Mesh& m : loaded.scene.meshes) loaded.meshes.push_back(uploadMesh(m));
+    return &scenes_.emplace(path, std::move(loaded)).first->second;
+}
 
-    for (const SceneSpec& scene_spec : spec.scenes) {
-        if (!options.only_scenes.empty() && std::find(options.only_scenes.begin(), options.only_scenes.end(),
-                                                      scene_spec.name) == options.only_scenes.end())
-            continue;
-        const auto t0 = std::chrono::steady_clock::now();
-        SceneRender scene_out;
-        scene_out.scene = scene_spec.name;
+GLuint LabRunner::sampler(TextureFilter filter, TextureWrap wrap) {
+    const auto key = std::make_pair(static_cast<int>(filter), static_cast<int>(wrap));
+    auto it = samplers_.find(key);
+    if (it != samplers_.end()) return it->second;
+    GLuint s = 0;
+    glGenSamplers(1, &s);
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, glFilter(filter));
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, glFilter(filter));
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, glWrap(wrap));
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, glWrap(wrap));
+    samplers_[key] = s;
+    return s;
+}
 
-        const Scene* scene = nullptr;
-        static const Scene kEmptyScene;
-        std::vector<std::unique_ptr<GpuMesh>> gpu_meshes;
-        if (!scene_spec.file.empty()) {
-            const std::string path = (std::filesystem::path(spec.labs_root) / scene_spec.file).string();
-            auto it = scene_cache.find(path);
-            if (it == scene_cache.end()) {
-                Scene loaded;
-                const SceneLoadResult r = loadGltfScene(path, &loaded);
-                if (!r.ok) {
-                    result.status = RenderStatus::RenderError;
-                    result.message = r.error;
-                    cleanup_textures();
-                    return result;
-                }
-                it = scene_cache.emplace(path, std::move(loaded)).first;
-            }
-            scene = &it->second;
-            for (const Mesh& m : scene->meshes) gpu_meshes.push_back(uploadMesh(m));
+// Sets a framework uniform when the shader declares it; one declared with another type is
+// skipped with a warning, since the value would be meaningless.
+void LabRunner::setFramework(const ShaderProgram& prog, const std::string& file, const char* name, GLenum type,
+                             const std::function<void(GLint)>& set) {
+    const UniformSlot* s = prog.uniform(name);
+    if (!s) return;
+    if (s->type != type) {
+        warnOnce(file, std::string(name) + " is provided by the framework with another type: see docs/student-contract.md");
+        return;
+    }
+    set(s->location);
+}
+
+bool LabRunner::renderScene(const SceneSpec& scene_spec) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const LoadedScene* scene = loadScene(scene_spec);
+    if (!scene) return false;
+    // Every target starts each scene blank, so nothing of the previous scene survives in a pass
+    // that draws without clearing.
+    for (auto& [name, t] : targets_) {
+        glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+        glDepthMask(GL_TRUE);
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glClearDepth(1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
+    const Camera camera = resolveCamera(scene->scene, scene_spec.camera);
+    const LightUniforms lights = resolveLights(scene->scene, scene_spec, camera);
+    SceneRender scene_out;
+    scene_out.scene = scene_spec.name;
+    for (std::size_t i = 0; i < spec_.passes.size(); ++i)
+        if (!runPass(i, scene_spec, scene, camera, lights, &scene_out)) return false;
+    glFinish();
+    scene_out.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out_.scenes.push_back(std::move(scene_out));
+    return true;
+}
+
+bool LabRunner::runPass(std::size_t index, const SceneSpec& scene_spec, const LoadedScene* scene,
+                        const Camera& camera, const LightUniforms& lights, SceneRender* scene_out) {
+    const PassSpec& pass = spec_.passes[index];
+    const ShaderProgram& prog = programs_.at({pass.program.vertex, pass.program.fragment});
+    const std::string& file = pass.program.fragment;
+    Target& target = *targets_.at(pass_target_[index]);
+    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+    glViewport(0, 0, target.width, target.height);
+    applyState(pass.state);
+    glUseProgram(prog.id());
+
+    // Inputs on consecutive units; every other unit is left empty, so a sampler the lab does not
+    // feed reads the incomplete texture 0 (black) rather than whatever was bound last.
+    for (GLuint unit = 0; unit < 16; ++unit) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glBindSampler(unit, 0);
+    }
+    GLuint unit = 0;
+    for (const PassInput& in : pass.inputs) {
+        GLuint tex = 0;
+        TextureFilter filter = TextureFilter::Linear;
+        TextureWrap wrap = TextureWrap::ClampToEdge;
+        if (!in.from_pass.empty()) {
+            tex = targets_.at(in.from_pass)->color;
+            filter = target_specs_.at(in.from_pass)->filter;
+            wrap = target_specs_.at(in.from_pass)->wrap;
         } else {
-            scene = &kEmptyScene;
+            tex = file_textures_.at(in.texture_file);
         }
-
-        const Camera camera = resolveCamera(*scene, scene_spec.camera);
-        const LightUniforms lights = resolveLights(*scene, scene_spec, camera);
-        const glm::mat4 view = glm::lookAt(camera.position, camera.target, camera.up);
-
-        for (std::size_t pi = 0; pi < spec.passes.size(); ++pi) {
-            const PassSpec& pass = spec.passes[pi];
-            const ShaderProgram& prog = programs.at({pass.program.vertex, pass.program.fragment});
-            Target& target = *targets.at(pass_target[pi]);
-            glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
-            glViewport(0, 0, target.width, target.height);
-            applyState(pass.state);
-            glUseProgram(prog.id());
-
-            // Inputs: earlier targets and lab textures on consecutive texture units.
-            int unit = 0;
-            for (const PassInput& in : pass.inputs) {
-                GLuint tex = 0;
-                TextureFilter filter = TextureFilter::Linear;
-                TextureWrap wrap = TextureWrap::ClampToEdge;
-                if (!in.from_pass.empty()) {
-                    tex = targets.at(in.from_pass)->color;
-                    filter = target_specs.at(in.from_pass)->filter;
-                    wrap = target_specs.at(in.from_pass)->wrap;
-                } else {
-                    tex = file_textures.at(in.texture_file);
-                }
-                if (in.filter) filter = *in.filter;
-                if (in.wrap) wrap = *in.wrap;
-                glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
-                setSampling(tex, filter, wrap);
-                if (const UniformSlot* s = prog.uniform(in.sampler)) glUniform1i(s->location, unit);
-                ++unit;
-            }
-            glActiveTexture(GL_TEXTURE0);
-
-            const float aspect = static_cast<float>(target.width) / static_cast<float>(target.height);
-            const glm::mat4 projection =
-                glm::perspective(glm::radians(camera.fov_y_deg), aspect, camera.z_near, camera.z_far);
-            setIfActive(prog, "u_view", GL_FLOAT_MAT4,
-                        [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(view)); });
-            setIfActive(prog, "u_projection", GL_FLOAT_MAT4,
-                        [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(projection)); });
-            setIfActive(prog, "u_camera_position", GL_FLOAT_VEC3,
-                        [&](GLint l) { glUniform3fv(l, 1, glm::value_ptr(camera.position)); });
-            setIfActive(prog, "u_time", GL_FLOAT, [&](GLint l) { glUniform1f(l, scene_spec.time); });
-            setIfActive(prog, "u_resolution", GL_FLOAT_VEC2, [&](GLint l) {
-                glUniform2f(l, static_cast<float>(target.width), static_cast<float>(target.height));
-            });
-            setIfActive(prog, "u_light_count", GL_INT, [&](GLint l) { glUniform1i(l, lights.count); });
-            if (const UniformSlot* s = prog.uniform("u_light_position"); s && s->type == GL_FLOAT_VEC4)
-                glUniform4fv(s->location, std::min(s->size, lights.count),
-                             glm::value_ptr(lights.position[0]));
-            if (const UniformSlot* s = prog.uniform("u_light_color"); s && s->type == GL_FLOAT_VEC3)
-                glUniform3fv(s->location, std::min(s->size, lights.count), glm::value_ptr(lights.color[0]));
-
-            // Lab values: the pass's, then the scene's overrides.
-            for (const UniformMap* map : {&pass.uniforms, &scene_spec.uniforms}) {
-                for (const auto& [name, value] : *map) {
-                    const std::string warning = prog.set(name, value);
-                    if (!warning.empty() && scene_out.scene == spec.scenes.front().name)
-                        result.diagnostics.push_back({pass.program.fragment, 0, 0, "warning", warning});
-                }
-            }
-            glUseProgram(prog.id());
-
-            auto draw = [&](const GpuMesh& mesh, const glm::mat4& model, const glm::vec4& base_color) {
-                const glm::mat4 model_view = view * model;
-                const glm::mat4 mvp = projection * model_view;
-                const glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(model));
-                setIfActive(prog, "u_model", GL_FLOAT_MAT4,
-                            [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(model)); });
-                setIfActive(prog, "u_model_view", GL_FLOAT_MAT4,
-                            [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(model_view)); });
-                setIfActive(prog, "u_model_view_projection", GL_FLOAT_MAT4,
-                            [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(mvp)); });
-                setIfActive(prog, "u_normal_matrix", GL_FLOAT_MAT3, [&](GLint l) {
-                    glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(normal_matrix));
-                });
-                setIfActive(prog, "u_base_color", GL_FLOAT_VEC4,
-                            [&](GLint l) { glUniform4fv(l, 1, glm::value_ptr(base_color)); });
-                glBindVertexArray(mesh.vao);
-                glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
-            };
-
-            if (pass.draw == DrawKind::Fullscreen) {
-                draw(*fullscreen, glm::mat4(1.0f), glm::vec4(1.0f));
-            } else {
-                for (const DrawItem& item : scene->draw_items) {
-                    const glm::vec4 base =
-                        item.material >= 0
-                            ? scene->materials[static_cast<std::size_t>(item.material)].base_color
-                            : glm::vec4(1.0f);
-                    draw(*gpu_meshes[static_cast<std::size_t>(item.mesh)], item.world, base);
-                }
-            }
-            glBindVertexArray(0);
-
-            const GLenum err = glGetError();
-            if (err != GL_NO_ERROR) {
-                result.status = RenderStatus::RenderError;
-                result.message =
-                    "pass '" + pass.name + "', scene '" + scene_spec.name + "': " + glErrorName(err);
-                cleanup_textures();
-                return result;
-            }
-            if (pass.graded || options.keep_all_passes) {
-                PassImage img = readBack(target, pass_draws_depth[pi] || !pass.draw_into.empty());
-                img.pass = pass.name;
-                img.target = pass_target[pi];
-                img.graded = pass.graded;
-                scene_out.passes.push_back(std::move(img));
-            }
+        if (in.filter) filter = *in.filter;
+        if (in.wrap) wrap = *in.wrap;
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, tex);
+        glBindSampler(unit, sampler(filter, wrap));
+        if (const UniformSlot* s = prog.uniform(in.sampler)) {
+            if (isSampler2D(s->type)) glUniform1i(s->location, static_cast<GLint>(unit));
+            else warnOnce(file, in.sampler + " receives a texture from the lab; declare it as sampler2D");
         }
-        glFinish();
-        scene_out.render_ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        result.scenes.push_back(std::move(scene_out));
+        ++unit;
     }
-    cleanup_textures();
-    glUseProgram(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glActiveTexture(GL_TEXTURE0);
+
+    const float aspect = static_cast<float>(target.width) / static_cast<float>(target.height);
+    const glm::mat4 view = glm::lookAt(camera.position, camera.target, camera.up);
+    const glm::mat4 projection = glm::perspective(glm::radians(camera.fov_y_deg), aspect, camera.z_near, camera.z_far);
+    setFramework(prog, file, "u_view", GL_FLOAT_MAT4,
+                 [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(view)); });
+    setFramework(prog, file, "u_projection", GL_FLOAT_MAT4,
+                 [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(projection)); });
+    setFramework(prog, file, "u_camera_position", GL_FLOAT_VEC3,
+                 [&](GLint l) { glUniform3fv(l, 1, glm::value_ptr(camera.position)); });
+    setFramework(prog, file, "u_time", GL_FLOAT, [&](GLint l) { glUniform1f(l, scene_spec.time); });
+    setFramework(prog, file, "u_resolution", GL_FLOAT_VEC2, [&](GLint l) {
+        glUniform2f(l, static_cast<float>(target.width), static_cast<float>(target.height));
+    });
+    setFramework(prog, file, "u_light_count", GL_INT, [&](GLint l) { glUniform1i(l, lights.count); });
+    // All declared entries are written (unused ones zero), so no light of another scene lingers.
+    if (const UniformSlot* s = prog.uniform("u_light_position")) {
+        if (s->type == GL_FLOAT_VEC4) glUniform4fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(lights.position[0]));
+        else warnOnce(file, "u_light_position is provided by the framework as vec4");
+    }
+    if (const UniformSlot* s = prog.uniform("u_light_color")) {
+        if (s->type == GL_FLOAT_VEC3) glUniform3fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(lights.color[0]));
+        else warnOnce(file, "u_light_color is provided by the framework as vec3");
+    }
+
+    // Lab values: scene-only names reset, then the pass's values, then the scene's overrides.
+    for (const auto& [name, zero] : scene_uniform_zeros_)
+        if (!pass.uniforms.count(name) && !scene_spec.uniforms.count(name)) prog.set(name, zero);
+    for (const UniformMap* map : {&pass.uniforms, &scene_spec.uniforms}) {
+        for (const auto& [name, value] : *map) {
+            const std::string warning = prog.set(name, value);
+            if (!warning.empty()) warnOnce(file, warning);
+        }
+    }
+    glUseProgram(prog.id());
+
+    auto draw = [&](const GpuMesh& mesh, const glm::mat4& model, const glm::vec4& base_color) {
+        const glm::mat4 model_view = view * model;
+        const glm::mat4 mvp = projection * model_view;
+        const glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(model));
+        setFramework(prog, file, "u_model", GL_FLOAT_MAT4,
+                     [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(model)); });
+        setFramework(prog, file, "u_model_view", GL_FLOAT_MAT4,
+                     [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(model_view)); });
+        setFramework(prog, file, "u_model_view_projection", GL_FLOAT_MAT4,
+                     [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(mvp)); });
+        setFramework(prog, file, "u_normal_matrix", GL_FLOAT_MAT3,
+                     [&](GLint l) { glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(normal_matrix)); });
+        setFramework(prog, file, "u_base_color", GL_FLOAT_VEC4,
+                     [&](GLint l) { glUniform4fv(l, 1, glm::value_ptr(base_color)); });
+        glBindVertexArray(mesh.vao);
+        glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+    };
+    if (pass.draw == DrawKind::Fullscreen) {
+        draw(*fullscreen_, glm::mat4(1.0f), glm::vec4(1.0f));
+    } else {
+        for (const DrawItem& item : scene->scene.draw_items) {
+            const glm::vec4 base = item.material >= 0
+                                       ? scene->scene.materials[static_cast<std::size_t>(item.material)].base_color
+                                       : glm::vec4(1.0f);
+            draw(*scene->meshes[static_cast<std::size_t>(item.mesh)], item.world, base);
+        }
+    }
+    glBindVertexArray(0);
+
+    const GLenum err = glGetError();
+    if (err != GL_NO_ERROR)
+        return fail(RenderStatus::RenderError,
+                    "pass '" + pass.name + "', scene '" + scene_spec.name + "': " + glErrorName(err));
+    if (pass.graded || options_.keep_all_passes) {
+        // Coverage comes from depth: scene passes and passes drawing into another target.
+        PassImage img = readBack(target, pass.draw == DrawKind::Scene || !pass.draw_into.empty());
+        img.pass = pass.name;
+        img.target = pass_target_[index];
+        img.graded = pass.graded;
+        scene_out->passes.push_back(std::move(img));
+    }
+    return true;
+}
+
+}  // namespace
+
+LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const RenderOptions& options) {
+    LabRender result;
+    LabRunner runner(spec, shader_dir, options, &result);
+    if (!runner.prepare()) return result;
+    for (const SceneSpec& scene_spec : spec.scenes) {
+        if (!options.only_scenes.empty() &&
+            std::find(options.only_scenes.begin(), options.only_scenes.end(), scene_spec.name) ==
+                options.only_scenes.end())
+            continue;
+        if (!runner.renderScene(scene_spec)) break;
+    }
     return result;
 }
 

@@ -121,20 +121,31 @@ std::string defaultPrelude() {
 }
 
 PreparedSource prepareSource(const std::string& student_text, const std::string& prelude) {
-    const std::vector<std::string> lines = splitLines(student_text);
+    // A UTF-8 byte-order mark (some Windows editors write one) is not GLSL.
+    const bool bom = student_text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+    const std::vector<std::string> lines = splitLines(bom ? student_text.substr(3) : student_text);
     const int version_line = findVersionLine(lines);
     PreparedSource out;
     std::string text;
     int next_student_line = 1;
+    // GLSL 3.30 (ES 3.00) and later: "#line N" numbers the next line N. Earlier versions number
+    // it N + 1 (GLSL 1.50 section 3.3), so the directive must say one less.
+    bool old_line_rule = false;
     if (version_line >= 0) {
+        const std::string& v = lines[static_cast<std::size_t>(version_line)];
+        static const std::regex version_re(R"(#\s*version\s+(\d+)\s*(es)?)");
+        std::smatch m;
+        if (std::regex_search(v, m, version_re)) {
+            const int number = std::stoi(m[1]);
+            old_line_rule = m[2].matched ? number < 300 : number < 330;
+        }
         for (int i = 0; i <= version_line; ++i) text += lines[static_cast<std::size_t>(i)] + "\n";
         next_student_line = version_line + 2;
     } else {
         text += "#version 330 core\n";
     }
     text += prelude;
-    // GLSL 3.30 onwards: "#line N" gives the line after the directive the number N.
-    text += "#line " + std::to_string(next_student_line) + " 0\n";
+    text += "#line " + std::to_string(old_line_rule ? next_student_line - 1 : next_student_line) + " 0\n";
     for (std::size_t i = static_cast<std::size_t>(next_student_line - 1); i < lines.size(); ++i)
         text += lines[i] + "\n";
     out.text = std::move(text);
@@ -146,7 +157,7 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& 
     // Mesa:      0:12(5): error: `x' undeclared
     // NVIDIA:    0(12) : error C1008: undefined variable "x"
     // Others:    ERROR: 0:12: 'x' : undeclared identifier
-    static const std::regex mesa(R"(^\s*\d+:(\d+)\((\d+)\):\s*(error|warning)\s*:?\s*(.*)$)",
+    static const std::regex mesa(R"(^\s*\d+:(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning)\s*:?\s*(.*)$)",
                                  std::regex::icase);
     static const std::regex nvidia(R"(^\s*\d+\((\d+)\)\s*:\s*(error|warning)\s*\w*\s*:?\s*(.*)$)",
                                    std::regex::icase);

@@ -122,7 +122,7 @@ std::string reportToJson(const Report& report) {
                  {"score", number(report.score)},
                  {"max_score", number(report.max_score)},
                  {"labs", labs}};
-    return root.dump(2) + "\n";
+    return root.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 bool reportFromJson(const std::string& text, Report* out, std::string* error) {
@@ -227,7 +227,7 @@ std::string reportToGradescope(const Report& report) {
                   report.score, report.max_score);
     json root = {
         {"score", number(report.score)}, {"output", summary}, {"visibility", "visible"}, {"tests", tests}};
-    return root.dump(2) + "\n";
+    return root.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace grader

@@ -24,8 +24,9 @@ struct GradeOptions {
     IsolationLimits limits;
 };
 
-// Called after each lab is graded (for progress output); may be empty.
-using LabCallback = std::function<void(const grader::ReportLab&)>;
+// Called after each lab is graded with the report so far (its last lab is the new one), so the
+// caller can print progress and rewrite report files; may be empty.
+using LabCallback = std::function<void(const grader::Report&)>;
 
 grader::Report gradeSubmission(const std::string& submission_dir, const GradeOptions& options,
                                const LabCallback& on_lab = {});

@@ -45,6 +45,9 @@ struct LabRender {
 struct RenderOptions {
     bool keep_all_passes = false;          // read back ungraded passes too (debugging a multi-pass lab)
     std::vector<std::string> only_scenes;  // empty: all scenes of the lab
+    // The submission folder: student files must resolve inside it (so a lab folder that is a
+    // symlink out of the submission is refused). Empty: the shader folder itself.
+    std::string containment_root;
 };
 
 // Renders `spec` with the shader files found in `shader_dir` (the submission's lab folder,
