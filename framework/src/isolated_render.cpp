@@ -67,9 +67,13 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
     // child spinning on a shader. If it is already gone, stop now.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent_pid) _exit(1);
+#if !defined(__SANITIZE_ADDRESS__)
+    // (AddressSanitizer maps terabytes of shadow memory up front, so a sanitizer build goes
+    // without the address-space limit.)
     rlimit as{};
     as.rlim_cur = as.rlim_max = limits.memory_bytes;
     setrlimit(RLIMIT_AS, &as);
+#endif
     // A backstop should the parent's clock fail: CPU seconds of all the driver's threads.
     const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
     rlimit cpu{};
