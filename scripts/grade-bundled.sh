@@ -21,5 +21,5 @@ for s in "${submissions[@]}"; do
   if [ "$rc" -ge 2 ]; then status=$rc; fi
 done
 echo
-echo "reports: $(pwd)/$out/<submission>/report.html (and report.json, results.json, report.junit.xml)"
+echo "reports: $(realpath -m "$out")/<submission>/report.html (and report.json, results.json, report.junit.xml)"
 exit $status
