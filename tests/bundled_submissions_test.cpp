@@ -166,7 +166,8 @@ TEST(CliExitCodes, SymlinkOutOfTheSubmissionIsRefused) {
 TEST(CliExitCodes, SymlinkedLabFolderIsRefused) {
     const fs::path sub = scratch("symlinked_lab");
     fs::create_directories(sub);
-    fs::create_directory_symlink(fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions/01-phong", sub / "01-phong");
+    fs::create_directory_symlink(fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions/01-phong",
+                                 sub / "01-phong");
     const fs::path out = scratch("symlinked_lab_out");
     const CliRun run = runCli("grade " + sub.string() + " --out " + out.string() + " --lab 01-phong");
     ASSERT_EQ(run.exit_code, 1) << run.output;

@@ -138,11 +138,11 @@ class LineMappingTest : public ::testing::TestWithParam<const char*> {};
 TEST_P(LineMappingTest, ErrorOnLineSixIsReportedOnLineSix) {
     std::string err;
     ASSERT_NE(shaderlab::testing::sharedContext(shaderlab::Backend::OSMesa, &err), nullptr) << err;
-    const std::string frag = std::string(GetParam()) +  // line 1
-                             "out vec4 o_color;\n"      // 2
-                             "uniform float u_gain;\n"  // 3
-                             "void main() {\n"          // 4
-                             "    float x = u_gain;\n"  // 5
+    const std::string frag = std::string(GetParam()) +        // line 1
+                             "out vec4 o_color;\n"            // 2
+                             "uniform float u_gain;\n"        // 3
+                             "void main() {\n"                // 4
+                             "    float x = u_gain;\n"        // 5
                              "    o_color = vec4(y, 1.0);\n"  // 6
                              "}\n";
     shaderlab::ShaderProgram p;

@@ -72,7 +72,8 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
                 lab.id.c_str(), lab.score, lab.max_score);
     if (!ok) std::printf("  (%s)", lab.status.c_str());
     std::printf("\n");
-    if (!lab.message.empty()) std::printf("    %s\n", lab.message.c_str());
+    // A build failure's message repeats its first diagnostic, printed below.
+    if (!lab.message.empty() && lab.diagnostics.empty()) std::printf("    %s\n", lab.message.c_str());
     for (const grader::ReportDiagnostic& d : lab.diagnostics) {
         std::printf("    %s/%s", lab.id.c_str(), d.file.c_str());
         if (d.line > 0) std::printf(":%d", d.line);
@@ -113,7 +114,8 @@ bool selectLabs(const CommonOptions& common, const std::vector<std::string>& wan
     return ok;
 }
 
-bool writeReports(const grader::Report& report, const fs::path& out, const std::vector<std::string>& formats) {
+bool writeReports(const grader::Report& report, const fs::path& out,
+                  const std::vector<std::string>& formats) {
     bool ok = writeText(out / "report.json", grader::reportToJson(report));
     ok = writeText(out / "report.html", grader::reportToHtml(report)) && ok;
     for (const std::string& f : formats) {

@@ -25,7 +25,8 @@ struct ReferenceImages {
 };
 
 // Renders the lab folder `id` of the submission `root` (student files must stay inside root).
-IsolatedRender renderFrom(const LabSpec& spec, const std::string& root, Backend backend, const IsolationLimits& limits) {
+IsolatedRender renderFrom(const LabSpec& spec, const std::string& root, Backend backend,
+                          const IsolationLimits& limits) {
     RenderOptions options;
     options.containment_root = root;
     return renderLabIsolated(spec, (fs::path(root) / spec.id).string(), backend, limits, options);
@@ -176,8 +177,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     }
 
     // The student first: a submission that does not build needs no reference at all.
-    const IsolatedRender student =
-        renderFrom(spec, submission_dir, options.backend, options.limits);
+    const IsolatedRender student = renderFrom(spec, submission_dir, options.backend, options.limits);
     if (!student.renderer.empty()) *renderer = student.renderer;
     for (const Diagnostic& d : student.render.diagnostics)
         lab.diagnostics.push_back({d.file, d.line, d.column, d.severity, d.message});
@@ -219,8 +219,8 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                          it->second[i].color.height == scene.passes[i].color.height;
         if (!consistent) {
             lab.status = "crashed";
-            lab.message = "the reference images (" + ref.source + ") do not match lab.json for scene '" + scene.scene +
-                          "': regenerate them with `shaderlab goldens`";
+            lab.message = "the reference images (" + ref.source + ") do not match lab.json for scene '" +
+                          scene.scene + "': regenerate them with `shaderlab goldens`";
             return finish();
         }
     }

@@ -61,8 +61,8 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
 
 // Child side: render, then write result.json and one raw file per image. Never returns.
 [[noreturn]] void childMain(const LabSpec& spec, const std::string& shader_dir, Backend backend,
-                            const IsolationLimits& limits, const RenderOptions& options,
-                            const fs::path& dir, pid_t parent_pid) {
+                            const IsolationLimits& limits, const RenderOptions& options, const fs::path& dir,
+                            pid_t parent_pid) {
     // Die with the grader: a parent killed by a batch system's time limit must not leave a
     // child spinning on a shader. If it is already gone, stop now.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -229,7 +229,8 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
     std::fflush(nullptr);  // buffered output would otherwise be written twice
     // An inherited SIG_IGN for SIGCHLD would make the kernel reap the child itself and waitpid
     // fail; the default disposition is restored around the render.
-    struct sigaction dfl {}, old_chld {};
+    struct sigaction dfl {
+    }, old_chld{};
     dfl.sa_handler = SIG_DFL;
     sigemptyset(&dfl.sa_mask);
     sigaction(SIGCHLD, &dfl, &old_chld);
@@ -288,9 +289,10 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
             out.message += "; the shader may have crashed the driver or exceeded the memory limit";
     } else if (!readChildResult(dir, &out)) {
         out.status = IsolatedStatus::Crashed;
-        out.message = (lost ? std::string("the render process ended")
-                            : "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) + ")") +
-                      " without a readable result; out of memory?";
+        out.message =
+            (lost ? std::string("the render process ended")
+                  : "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) + ")") +
+            " without a readable result; out of memory?";
     }
     if (out.status == IsolatedStatus::Timeout || out.status == IsolatedStatus::Crashed) {
         out.render.status = RenderStatus::RenderError;

@@ -290,9 +290,12 @@ UniformValue zeroLike(const UniformValue& v) {
     return std::visit(
         [](const auto& x) -> UniformValue {
             using T = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<T, glm::mat3> || std::is_same_v<T, glm::mat4>) return T(0.0f);
-            else if constexpr (std::is_same_v<T, bool>) return false;
-            else return T(0);
+            if constexpr (std::is_same_v<T, glm::mat3> || std::is_same_v<T, glm::mat4>)
+                return T(0.0f);
+            else if constexpr (std::is_same_v<T, bool>)
+                return false;
+            else
+                return T(0);
         },
         v);
 }
@@ -302,7 +305,7 @@ bool isSampler2D(unsigned type) { return type == GL_SAMPLER_2D; }
 // One lab on the current context: the steps of renderLab, each in its own method. Owns every GL
 // object it makes and deletes them when it goes.
 class LabRunner {
-public:
+  public:
     LabRunner(const LabSpec& spec, const std::string& shader_dir, const RenderOptions& options,
               LabRender* out)
         : spec_(spec), shader_dir_(shader_dir), options_(options), out_(*out) {}
@@ -318,7 +321,7 @@ public:
 
     bool renderScene(const SceneSpec& scene_spec);
 
-private:
+  private:
     struct LoadedScene {
         Scene scene;
         std::vector<std::unique_ptr<GpuMesh>> meshes;
@@ -330,7 +333,8 @@ private:
         return false;
     }
     void warnOnce(const std::string& file, const std::string& message) {
-        if (warned_.insert(file + '\n' + message).second) out_.diagnostics.push_back({file, 0, 0, "warning", message});
+        if (warned_.insert(file + '\n' + message).second)
+            out_.diagnostics.push_back({file, 0, 0, "warning", message});
     }
 
     bool readSources();
@@ -339,8 +343,8 @@ private:
     bool createTargets();
     const LoadedScene* loadScene(const SceneSpec& scene_spec);
     GLuint sampler(TextureFilter filter, TextureWrap wrap);
-    bool runPass(std::size_t index, const SceneSpec& scene_spec, const LoadedScene* scene, const Camera& camera,
-                 const LightUniforms& lights, SceneRender* scene_out);
+    bool runPass(std::size_t index, const SceneSpec& scene_spec, const LoadedScene* scene,
+                 const Camera& camera, const LightUniforms& lights, SceneRender* scene_out);
     void setFramework(const ShaderProgram& prog, const std::string& file, const char* name, GLenum type,
                       const std::function<void(GLint)>& set);
 
@@ -365,11 +369,14 @@ private:
 // Student files come from the submission, every other program file from the lab folder: a
 // submission can neither omit nor replace the instructor's shared shaders.
 bool LabRunner::readSources() {
-    const std::string& student_root = options_.containment_root.empty() ? shader_dir_ : options_.containment_root;
-    const std::string prefix =
-        options_.containment_root.empty()
-            ? std::string()
-            : std::filesystem::path(shader_dir_).lexically_relative(options_.containment_root).generic_string() + "/";
+    const std::string& student_root =
+        options_.containment_root.empty() ? shader_dir_ : options_.containment_root;
+    const std::string prefix = options_.containment_root.empty()
+                                   ? std::string()
+                                   : std::filesystem::path(shader_dir_)
+                                             .lexically_relative(options_.containment_root)
+                                             .generic_string() +
+                                         "/";
     for (const PassSpec& pass : spec_.passes) {
         for (const std::string* file : {&pass.program.vertex, &pass.program.fragment}) {
             if (sources_.count(*file)) continue;
@@ -427,15 +434,18 @@ bool LabRunner::loadTextures() {
                 for (int x = 0; x < img.width; ++x) {
                     float* dst = &rgba[(static_cast<std::size_t>(img.height - 1 - y) * img.width + x) * 4];
                     for (int c = 0; c < 4; ++c) {
-                        if (img.channels == 1 && c < 3) dst[c] = img.at(x, y, 0);
-                        else if (img.channels > 1 && c < img.channels) dst[c] = img.at(x, y, c);
+                        if (img.channels == 1 && c < 3)
+                            dst[c] = img.at(x, y, 0);
+                        else if (img.channels > 1 && c < img.channels)
+                            dst[c] = img.at(x, y, c);
                     }
                 }
             }
             GLuint tex = 0;
             glGenTextures(1, &tex);
             glBindTexture(GL_TEXTURE_2D, tex);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, img.width, img.height, 0, GL_RGBA, GL_FLOAT, rgba.data());
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, img.width, img.height, 0, GL_RGBA, GL_FLOAT,
+                         rgba.data());
             file_textures_[in.texture_file] = tex;
         }
     }
@@ -497,12 +507,13 @@ GLuint LabRunner::sampler(TextureFilter filter, TextureWrap wrap) {
 
 // Sets a framework uniform when the shader declares it; one declared with another type is
 // skipped with a warning, since the value would be meaningless.
-void LabRunner::setFramework(const ShaderProgram& prog, const std::string& file, const char* name, GLenum type,
-                             const std::function<void(GLint)>& set) {
+void LabRunner::setFramework(const ShaderProgram& prog, const std::string& file, const char* name,
+                             GLenum type, const std::function<void(GLint)>& set) {
     const UniformSlot* s = prog.uniform(name);
     if (!s) return;
     if (s->type != type) {
-        warnOnce(file, std::string(name) + " is provided by the framework with another type: see docs/student-contract.md");
+        warnOnce(file, std::string(name) +
+                           " is provided by the framework with another type: see docs/student-contract.md");
         return;
     }
     set(s->location);
@@ -528,7 +539,8 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     for (std::size_t i = 0; i < spec_.passes.size(); ++i)
         if (!runPass(i, scene_spec, scene, camera, lights, &scene_out)) return false;
     glFinish();
-    scene_out.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    scene_out.render_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out_.scenes.push_back(std::move(scene_out));
     return true;
 }
@@ -569,8 +581,10 @@ bool LabRunner::runPass(std::size_t index, const SceneSpec& scene_spec, const Lo
         glBindTexture(GL_TEXTURE_2D, tex);
         glBindSampler(unit, sampler(filter, wrap));
         if (const UniformSlot* s = prog.uniform(in.sampler)) {
-            if (isSampler2D(s->type)) glUniform1i(s->location, static_cast<GLint>(unit));
-            else warnOnce(file, in.sampler + " receives a texture from the lab; declare it as sampler2D");
+            if (isSampler2D(s->type))
+                glUniform1i(s->location, static_cast<GLint>(unit));
+            else
+                warnOnce(file, in.sampler + " receives a texture from the lab; declare it as sampler2D");
         }
         ++unit;
     }
@@ -578,7 +592,8 @@ bool LabRunner::runPass(std::size_t index, const SceneSpec& scene_spec, const Lo
 
     const float aspect = static_cast<float>(target.width) / static_cast<float>(target.height);
     const glm::mat4 view = glm::lookAt(camera.position, camera.target, camera.up);
-    const glm::mat4 projection = glm::perspective(glm::radians(camera.fov_y_deg), aspect, camera.z_near, camera.z_far);
+    const glm::mat4 projection =
+        glm::perspective(glm::radians(camera.fov_y_deg), aspect, camera.z_near, camera.z_far);
     setFramework(prog, file, "u_view", GL_FLOAT_MAT4,
                  [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(view)); });
     setFramework(prog, file, "u_projection", GL_FLOAT_MAT4,
@@ -592,12 +607,16 @@ bool LabRunner::runPass(std::size_t index, const SceneSpec& scene_spec, const Lo
     setFramework(prog, file, "u_light_count", GL_INT, [&](GLint l) { glUniform1i(l, lights.count); });
     // All declared entries are written (unused ones zero), so no light of another scene lingers.
     if (const UniformSlot* s = prog.uniform("u_light_position")) {
-        if (s->type == GL_FLOAT_VEC4) glUniform4fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(lights.position[0]));
-        else warnOnce(file, "u_light_position is provided by the framework as vec4");
+        if (s->type == GL_FLOAT_VEC4)
+            glUniform4fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(lights.position[0]));
+        else
+            warnOnce(file, "u_light_position is provided by the framework as vec4");
     }
     if (const UniformSlot* s = prog.uniform("u_light_color")) {
-        if (s->type == GL_FLOAT_VEC3) glUniform3fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(lights.color[0]));
-        else warnOnce(file, "u_light_color is provided by the framework as vec3");
+        if (s->type == GL_FLOAT_VEC3)
+            glUniform3fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(lights.color[0]));
+        else
+            warnOnce(file, "u_light_color is provided by the framework as vec3");
     }
 
     // Lab values: scene-only names reset, then the pass's values, then the scene's overrides.
@@ -632,9 +651,10 @@ bool LabRunner::runPass(std::size_t index, const SceneSpec& scene_spec, const Lo
         draw(*fullscreen_, glm::mat4(1.0f), glm::vec4(1.0f));
     } else {
         for (const DrawItem& item : scene->scene.draw_items) {
-            const glm::vec4 base = item.material >= 0
-                                       ? scene->scene.materials[static_cast<std::size_t>(item.material)].base_color
-                                       : glm::vec4(1.0f);
+            const glm::vec4 base =
+                item.material >= 0
+                    ? scene->scene.materials[static_cast<std::size_t>(item.material)].base_color
+                    : glm::vec4(1.0f);
             draw(*scene->meshes[static_cast<std::size_t>(item.mesh)], item.world, base);
         }
     }
@@ -662,9 +682,8 @@ LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const Re
     LabRunner runner(spec, shader_dir, options, &result);
     if (!runner.prepare()) return result;
     for (const SceneSpec& scene_spec : spec.scenes) {
-        if (!options.only_scenes.empty() &&
-            std::find(options.only_scenes.begin(), options.only_scenes.end(), scene_spec.name) ==
-                options.only_scenes.end())
+        if (!options.only_scenes.empty() && std::find(options.only_scenes.begin(), options.only_scenes.end(),
+                                                      scene_spec.name) == options.only_scenes.end())
             continue;
         if (!runner.renderScene(scene_spec)) break;
     }

@@ -157,8 +157,8 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& 
     // Mesa:      0:12(5): error: `x' undeclared
     // NVIDIA:    0(12) : error C1008: undefined variable "x"
     // Others:    ERROR: 0:12: 'x' : undeclared identifier
-    static const std::regex mesa(R"(^\s*\d+:(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning)\s*:?\s*(.*)$)",
-                                 std::regex::icase);
+    static const std::regex mesa(
+        R"(^\s*\d+:(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning)\s*:?\s*(.*)$)", std::regex::icase);
     static const std::regex nvidia(R"(^\s*\d+\((\d+)\)\s*:\s*(error|warning)\s*\w*\s*:?\s*(.*)$)",
                                    std::regex::icase);
     static const std::regex khr(R"(^\s*(ERROR|WARNING)\s*:\s*\d+:(\d+)\s*:?\s*(.*)$)", std::regex::icase);
