@@ -32,22 +32,10 @@ IsolatedRender renderFrom(const LabSpec& spec, const std::string& root, Backend 
     return renderLabIsolated(spec, (fs::path(root) / spec.id).string(), backend, limits, options);
 }
 
+// The report's closed set of lab statuses for a render that did not succeed: the isolated
+// render's names, except that a GL error or broken scene (render_error) counts as crashed.
 std::string labStatusOf(IsolatedStatus s) {
-    switch (s) {
-        case IsolatedStatus::Missing:
-            return "missing";
-        case IsolatedStatus::CompileError:
-            return "compile_error";
-        case IsolatedStatus::LinkError:
-            return "link_error";
-        case IsolatedStatus::Timeout:
-            return "timeout";
-        case IsolatedStatus::Crashed:
-        case IsolatedStatus::RenderError:
-            return "crashed";
-        default:
-            return "passed";
-    }
+    return s == IsolatedStatus::RenderError ? "crashed" : isolatedStatusName(s);
 }
 
 std::vector<const PassSpec*> gradedPasses(const LabSpec& spec) {
