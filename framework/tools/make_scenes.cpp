@@ -61,6 +61,22 @@ void orientTriangles(Geometry* g) {
     }
 }
 
+// Two triangles per cell of a (rows + 1) x (cols + 1) vertex grid stored row by row, then wound
+// counter-clockwise. A UV sphere's first and last rows collapse to the poles, so there one
+// triangle of each cell would be degenerate and is left out.
+void addGridTriangles(Geometry* g, int rows, int cols, bool skip_pole_triangles) {
+    const auto at = [cols](int i, int j) { return static_cast<std::uint32_t>(i * (cols + 1) + j); };
+    for (int i = 0; i < rows; ++i) {
+        for (int j = 0; j < cols; ++j) {
+            if (!skip_pole_triangles || i != rows - 1)
+                g->indices.insert(g->indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            if (!skip_pole_triangles || i != 0)
+                g->indices.insert(g->indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    }
+    orientTriangles(g);
+}
+
 // UV sphere, +Y up, seam at -Z; the poles get one triangle per segment, not a degenerate pair.
 Geometry uvSphere(double radius, int segments, int rings) {
     Geometry g;
@@ -73,14 +89,7 @@ Geometry uvSphere(double radius, int segments, int rings) {
             g.vertices.push_back({radius * n, n, glm::dvec2(double(j) / segments, double(i) / rings)});
         }
     }
-    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (segments + 1) + j); };
-    for (int i = 0; i < rings; ++i) {
-        for (int j = 0; j < segments; ++j) {
-            if (i != rings - 1) g.indices.insert(g.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            if (i != 0) g.indices.insert(g.indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    }
-    orientTriangles(&g);
+    addGridTriangles(&g, rings, segments, true);
     return g;
 }
 
@@ -97,14 +106,7 @@ Geometry torus(double major, double minor, int segments, int sides) {
                 {centre + minor * n, n, glm::dvec2(double(i) / segments, double(j) / sides)});
         }
     }
-    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (sides + 1) + j); };
-    for (int i = 0; i < segments; ++i) {
-        for (int j = 0; j < sides; ++j) {
-            g.indices.insert(g.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            g.indices.insert(g.indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    }
-    orientTriangles(&g);
+    addGridTriangles(&g, segments, sides, false);
     return g;
 }
 
@@ -131,14 +133,7 @@ Geometry torusKnot(int p, int q, double scale, double tube, int segments, int si
                 {scale * pos + tube * n, n, glm::dvec2(double(i) / segments, double(j) / sides)});
         }
     }
-    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (sides + 1) + j); };
-    for (int i = 0; i < segments; ++i) {
-        for (int j = 0; j < sides; ++j) {
-            g.indices.insert(g.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            g.indices.insert(g.indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    }
-    orientTriangles(&g);
+    addGridTriangles(&g, segments, sides, false);
     return g;
 }
 
@@ -174,14 +169,7 @@ Geometry plane(double size, int cells) {
             g.vertices.push_back({{x, 0.0, z}, {0.0, 1.0, 0.0}, {double(j) / cells, double(i) / cells}});
         }
     }
-    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * (cells + 1) + j); };
-    for (int i = 0; i < cells; ++i) {
-        for (int j = 0; j < cells; ++j) {
-            g.indices.insert(g.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            g.indices.insert(g.indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    }
-    orientTriangles(&g);
+    addGridTriangles(&g, cells, cells, false);
     return g;
 }
 
