@@ -185,7 +185,9 @@ INSTANTIATE_TEST_SUITE_P(Gltf, GltfBundledScene,
                                            BundledCase{"cube_flat.gltf", 1, 1, 1, true},
                                            BundledCase{"cube_no_normals.gltf", 1, 1, 1, false},
                                            BundledCase{"nonuniform_scale.gltf", 1, 1, 1, true},
-                                           BundledCase{"ground_plane.gltf", 2, 2, 2, true}),
+                                           BundledCase{"ground_plane.gltf", 2, 2, 2, true},
+                                           BundledCase{"teapot.gltf", 1, 1, 1, true},
+                                           BundledCase{"teapot_on_plane.gltf", 2, 2, 2, true}),
                          [](const ::testing::TestParamInfo<BundledCase>& param_info) {
                              std::string name = param_info.param.file;
                              std::replace(name.begin(), name.end(), '.', '_');
@@ -201,7 +203,8 @@ TEST(GltfBundledScenes, EveryBundledSceneIsCovered) {
     const std::set<std::string> tested = {
         "sphere.gltf",           "sphere_low_poly.gltf", "torus.gltf",
         "torus_knot.glb",        "cube_flat.gltf",       "cube_no_normals.gltf",
-        "nonuniform_scale.gltf", "ground_plane.gltf"};
+        "nonuniform_scale.gltf", "ground_plane.gltf",    "teapot.gltf",
+        "teapot_on_plane.gltf"};
     EXPECT_EQ(files, tested) << "add new scenes to GltfBundledScene";
 }
 
