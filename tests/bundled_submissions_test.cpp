@@ -66,7 +66,7 @@ TEST_P(BundledSubmission, GradesAsExpected) {
 
     const json report = readJson(out / "report.json");
     ASSERT_FALSE(report.is_discarded()) << run.output;
-    ASSERT_EQ(report["schema_version"], 1);
+    ASSERT_EQ(report["schema_version"], 2);
     for (const json& lab : report["labs"]) {
         const json& want = expected[lab["id"].get<std::string>()];
         EXPECT_EQ(lab["status"], want["status"]) << lab.dump(2).substr(0, 3000);

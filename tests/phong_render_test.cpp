@@ -29,8 +29,11 @@ shaderlab::LabSpec phongSpec() {
     return parsed.spec;
 }
 
-float uniformFloat(const shaderlab::UniformMap& m, const std::string& name) {
-    return std::get<float>(m.at(name));
+float uniformFloat(const shaderlab::UniformList& list, const std::string& name) {
+    for (const auto& u : list)
+        if (u.name == name) return u.value.get<float>();
+    ADD_FAILURE() << name << " is not set in lab.json";
+    return 0.0f;
 }
 
 class PhongRender : public ::testing::Test {
@@ -111,7 +114,7 @@ TEST_F(PhongRender, ReferenceMatchesPhongModelOnCpu) {
     EXPECT_LT(max_err, 0.1f);
 
     // The background is exactly the clear colour, and nothing outside the sphere is covered.
-    const auto& clear = *spec.passes[0].state.clear_color;
+    const auto& clear = *spec.passes[0].state.clear_colors[0];
     EXPECT_FLOAT_EQ(img.at(0, 0, 0), clear.r);
     EXPECT_FLOAT_EQ(img.at(0, 0, 2), clear.b);
     EXPECT_EQ(r.scenes[0].passes.back().coverage[0], 0);

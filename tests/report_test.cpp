@@ -53,6 +53,17 @@ grader::Report sampleReport() {
     pass.metrics = off.metrics;
     off.passes.push_back(pass);
     built.scenes = {same, off};
+    grader::ReportGoal lit;
+    lit.id = "diffuse";
+    lit.title = "Diffuse term";
+    lit.points = 7.5;
+    lit.met = true;
+    grader::ReportGoal lobe;
+    lobe.id = "highlight";
+    lobe.title = "Phong highlight";
+    lobe.points = 2.5;
+    lobe.failing = {"torus/shade"};
+    built.goals = {lit, lobe};
 
     grader::ReportLab broken;
     broken.id = "02-toon";
@@ -85,6 +96,9 @@ TEST(ReportJson, RoundTripsEveryField) {
     EXPECT_EQ(out.labs[0].scenes[1].first_failing_pass, "shade");
     EXPECT_TRUE(out.labs[0].scenes[0].first_failing_pass.empty());
     EXPECT_EQ(out.labs[0].scenes[1].passes.at(0).reasons, in.labs[0].scenes[1].passes[0].reasons);
+    ASSERT_EQ(out.labs[0].goals.size(), 2u);
+    EXPECT_TRUE(out.labs[0].goals[0].met);
+    EXPECT_EQ(out.labs[0].goals[1].failing, std::vector<std::string>{"torus/shade"});
     // Writing what was read gives the same text: nothing is lost or reinterpreted.
     EXPECT_EQ(grader::reportToJson(out), text);
 }
@@ -106,14 +120,18 @@ TEST(ReportJson, RejectsOtherSchemaVersions) {
     EXPECT_FALSE(grader::reportFromJson("not json", &out, &error));
 }
 
-TEST(ReportGradescope, OneTestPerSceneAndOnePerBrokenLab) {
+TEST(ReportGradescope, OneTestPerGoalAndOnePerBrokenLab) {
     const auto j = nlohmann::json::parse(grader::reportToGradescope(sampleReport()));
     EXPECT_DOUBLE_EQ(j["score"].get<double>(), 7.5);
     ASSERT_EQ(j["tests"].size(), 3u);
-    EXPECT_EQ(j["tests"][0]["name"], "01-phong / sphere");
+    EXPECT_EQ(j["tests"][0]["name"], "01-phong / Diffuse term");
     EXPECT_EQ(j["tests"][0]["status"], "passed");
+    EXPECT_DOUBLE_EQ(j["tests"][0]["score"].get<double>(), 7.5);
     EXPECT_EQ(j["tests"][1]["status"], "failed");
-    EXPECT_DOUBLE_EQ(j["tests"][1]["max_score"].get<double>(), 5.0);
+    EXPECT_DOUBLE_EQ(j["tests"][1]["score"].get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(j["tests"][1]["max_score"].get<double>(), 2.5);
+    // The failing check is named with the scene's reasons.
+    EXPECT_NE(j["tests"][1]["output"].get<std::string>().find("torus/shade: PSNR 20.0"), std::string::npos);
     EXPECT_EQ(j["tests"][2]["name"], "02-toon");
     EXPECT_NE(j["tests"][2]["output"].get<std::string>().find("toon.frag:7"), std::string::npos);
     for (const auto& t : j["tests"]) EXPECT_EQ(t["visibility"], "visible");

@@ -114,18 +114,24 @@ TEST_F(ShaderProgramTest, LinkErrorIsReportedAsLinkError) {
     EXPECT_FALSE(p.linkLog().empty());
 }
 
-TEST_F(ShaderProgramTest, UniformTypeMismatchIsReported) {
+TEST_F(ShaderProgramTest, ReflectsUniformsAndOutputs) {
     const std::string frag =
         "#version 330 core\n"
         "uniform int u_levels;\n"
+        "uniform vec3 u_tint[2];\n"
         "out vec4 o_color;\n"
-        "void main() { o_color = vec4(float(u_levels)); }\n";
+        "void main() { o_color = vec4(u_tint[1] * float(u_levels), 1.0); }\n";
     shaderlab::ShaderProgram p;
     ASSERT_TRUE(p.build("tri.vert", kVertex, "tri.frag", frag)) << p.linkLog();
-    EXPECT_EQ(p.set("u_levels", shaderlab::UniformValue(3)), "");
-    const std::string msg = p.set("u_levels", shaderlab::UniformValue(glm::vec3(1.0f)));
-    EXPECT_NE(msg.find("declared int"), std::string::npos) << msg;
-    EXPECT_EQ(p.set("u_not_there", shaderlab::UniformValue(1.0f)), "");
+    ASSERT_NE(p.uniform("u_levels"), nullptr);
+    EXPECT_EQ(p.uniform("u_levels")->size, 1);
+    ASSERT_NE(p.uniform("u_tint"), nullptr);
+    EXPECT_EQ(p.uniform("u_tint")->size, 2);
+    EXPECT_EQ(p.uniform("u_not_there"), nullptr);
+    ASSERT_TRUE(p.outputsKnown());
+    ASSERT_EQ(p.outputs().size(), 1u);
+    EXPECT_EQ(p.outputs()[0].name, "o_color");
+    EXPECT_EQ(p.outputs()[0].location, 0);
 }
 
 }  // namespace

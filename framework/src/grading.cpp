@@ -38,10 +38,27 @@ std::string labStatusOf(IsolatedStatus s) {
     return s == IsolatedStatus::RenderError ? "crashed" : isolatedStatusName(s);
 }
 
-std::vector<const PassSpec*> gradedPasses(const LabSpec& spec) {
-    std::vector<const PassSpec*> out;
-    for (const PassSpec& p : spec.passes)
-        if (p.graded) out.push_back(&p);
+// One graded image of every scene: a pass's attachment, in the order the renderer reads them.
+struct GradedImage {
+    const PassSpec* pass = nullptr;
+    std::string attachment;
+    std::string id;  // "shade", or "gbuffer.normal" when the target has several attachments
+    bool hdr = false;
+};
+
+std::vector<GradedImage> gradedImages(const LabSpec& spec) {
+    std::vector<GradedImage> out;
+    for (const PassSpec& p : spec.passes) {
+        const TargetSpec* t = spec.findTarget(p.target);
+        for (const std::string& a : p.graded) {
+            GradedImage g;
+            g.pass = &p;
+            g.attachment = a;
+            g.id = (t && t->attachments.size() == 1 && a != "depth") ? p.name : p.name + "." + a;
+            g.hdr = p.compare == CompareMode::Hdr;
+            out.push_back(std::move(g));
+        }
+    }
     return out;
 }
 
@@ -55,19 +72,24 @@ grader::Image coverageImage(const std::vector<std::uint8_t>& coverage, int w, in
 ReferenceImages loadGoldens(const LabSpec& spec) {
     ReferenceImages ref;
     ref.source = "goldens";
-    const auto graded = gradedPasses(spec);
+    const std::vector<GradedImage> graded = gradedImages(spec);
     for (const SceneSpec& scene : spec.scenes) {
         std::vector<PassImage>& passes = ref.scenes[scene.name];
         for (std::size_t i = 0; i < graded.size(); ++i) {
             const bool final_image = i + 1 == graded.size();
             PassImage img;
-            img.pass = graded[i]->name;
+            img.pass = graded[i].pass->name;
+            img.attachment = graded[i].attachment;
             img.graded = true;
-            const std::string color_path = goldenPath(spec.lab_dir, scene.name, img.pass, final_image, false);
-            const std::string cov_path = goldenPath(spec.lab_dir, scene.name, img.pass, final_image, true);
+            const std::string color_path =
+                goldenPath(spec.lab_dir, scene.name, graded[i].id, final_image, false, graded[i].hdr);
+            const std::string cov_path =
+                goldenPath(spec.lab_dir, scene.name, graded[i].id, final_image, true);
             grader::Image cov;
             std::string err;
-            if (!grader::readPng(color_path, &img.color, &err) || !grader::readPng(cov_path, &cov, &err)) {
+            const bool color_ok = graded[i].hdr ? grader::readHdr(color_path, &img.color, &err)
+                                                : grader::readPng(color_path, &img.color, &err);
+            if (!color_ok || !grader::readPng(cov_path, &cov, &err)) {
                 ref.error = "no reference solution and no golden image: " + err +
                             " (run `shaderlab goldens` with the reference solutions)";
                 return ref;
@@ -111,6 +133,7 @@ std::string joinReasons(const std::vector<std::string>& reasons) {
 grader::ReportMetrics reportMetrics(const grader::MetricSet& m, const grader::ImageVerdict& v) {
     grader::ReportMetrics out;
     out.psnr_db = m.psnr_db;
+    out.ssim_defined = m.ssim_defined;
     out.ssim = m.ssim;
     out.flip_mean = m.flip_mean;
     out.flip_weighted_median = m.flip_weighted_median;
@@ -185,15 +208,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         return finish();
     }
 
-    grader::Thresholds thresholds;
-    thresholds.psnr_min_db = spec.grading.psnr_min_db;
-    thresholds.ssim_min = spec.grading.ssim_min;
-    thresholds.flip_mean_max = spec.grading.flip_mean_max;
-    thresholds.mismatch_max = spec.grading.mismatch_max;
-    thresholds.pixel_tolerance = spec.grading.pixel_tolerance;
-    const double scene_points = spec.scenes.empty() ? 0.0
-                                                    : static_cast<double>(spec.grading.points) /
-                                                          static_cast<double>(spec.scenes.size());
+    const std::vector<GradedImage> graded = gradedImages(spec);
     const fs::path out_dir = options.out_dir;
     std::vector<std::string> write_errors;
 
@@ -201,10 +216,13 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     // is the lab's fault, never the student's.
     for (const SceneRender& scene : student.render.scenes) {
         const auto it = ref.scenes.find(scene.scene);
-        bool consistent = it != ref.scenes.end() && it->second.size() == scene.passes.size();
+        bool consistent = it != ref.scenes.end() && it->second.size() == graded.size() &&
+                          scene.passes.size() == graded.size();
         for (std::size_t i = 0; consistent && i < scene.passes.size(); ++i)
             consistent = it->second[i].color.width == scene.passes[i].color.width &&
-                         it->second[i].color.height == scene.passes[i].color.height;
+                         it->second[i].color.height == scene.passes[i].color.height &&
+                         scene.passes[i].pass == graded[i].pass->name &&
+                         scene.passes[i].attachment == graded[i].attachment;
         if (!consistent) {
             lab.status = "crashed";
             lab.message = "the reference images (" + ref.source + ") do not match lab.json for scene '" +
@@ -213,43 +231,65 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         }
     }
 
+    // (scene, pass) -> every graded image of that pass passed
+    std::map<std::pair<std::string, std::string>, bool> checks;
     bool all_passed = true;
     for (const SceneRender& scene : student.render.scenes) {
         grader::ReportScene rs;
         rs.name = scene.scene;
-        rs.max_score = scene_points;
         rs.render_ms = scene.render_ms;
         const auto ref_it = ref.scenes.find(scene.scene);
-        bool non_finite = false;
+        std::vector<std::string> first_reasons;
+        bool final_failed = false;
         for (std::size_t i = 0; i < scene.passes.size(); ++i) {
             const PassImage& mine = scene.passes[i];
             const PassImage& theirs = ref_it->second[i];
+            const GradedImage& g = graded[i];
             const bool final_image = i + 1 == scene.passes.size();
+            grader::Thresholds thresholds;
+            thresholds.psnr_min_db = g.pass->thresholds.psnr_min_db;
+            thresholds.ssim_min = g.pass->thresholds.ssim_min;
+            thresholds.flip_mean_max = g.pass->thresholds.flip_mean_max;
+            thresholds.mismatch_max = g.pass->thresholds.mismatch_max;
+            thresholds.pixel_tolerance = g.pass->thresholds.pixel_tolerance;
             const grader::ImageVerdict v =
-                grader::judgeImage(theirs.color, theirs.coverage, mine.color, mine.coverage, thresholds);
+                grader::judgeImage(theirs.color, theirs.coverage, mine.color, mine.coverage, thresholds,
+                                   g.hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
             grader::ReportPass rp;
-            rp.name = mine.pass;
+            rp.name = g.id;
+            rp.pass = g.pass->name;
+            rp.attachment = g.attachment;
+            rp.range = g.hdr ? "hdr" : "display";
+            rp.hdr_scale = v.hdr_scale;
             rp.passed = v.passed;
             rp.reasons = v.reasons;
             rp.metrics = reportMetrics(v.covered, v);
             const fs::path base = fs::path(id) / scene.scene;
-            const std::string suffix = final_image ? "" : "." + mine.pass;
+            const std::string suffix = final_image ? "" : "." + g.id;
+            // The pictures show what was compared: HDR images over the same scale.
+            grader::Image shown_mine = mine.color, shown_theirs = theirs.color;
+            if (g.hdr && v.hdr_scale > 1.0) {
+                for (float& x : shown_mine.pixels) x = static_cast<float>(x / v.hdr_scale);
+                for (float& x : shown_theirs.pixels) x = static_cast<float>(x / v.hdr_scale);
+            }
             rp.student_image =
-                writeImage(mine.color, out_dir, base / ("student" + suffix + ".png"), &write_errors);
+                writeImage(shown_mine, out_dir, base / ("student" + suffix + ".png"), &write_errors);
             rp.reference_image =
-                writeImage(theirs.color, out_dir, base / ("reference" + suffix + ".png"), &write_errors);
+                writeImage(shown_theirs, out_dir, base / ("reference" + suffix + ".png"), &write_errors);
             grader::HeatmapConfig hc;
             hc.outline = v.mismatches.empty() ? nullptr : &v.mismatches;
             const grader::Image heat =
                 grader::diffHeatmap(v.flip_map, mine.color.width, mine.color.height, hc);
             if (!heat.empty())
                 rp.diff_image = writeImage(heat, out_dir, base / ("diff" + suffix + ".png"), &write_errors);
-            if (!v.passed && rs.first_failing_pass.empty()) rs.first_failing_pass = mine.pass;
-            // NaN or Inf in any graded pass fails the scene, even when later passes hide it.
-            non_finite = non_finite || v.nan_count > 0 || v.inf_count > 0;
+            auto& check = checks.emplace(std::make_pair(scene.scene, g.pass->name), true).first->second;
+            check = check && v.passed;
+            if (!v.passed && rs.first_failing_pass.empty()) {
+                rs.first_failing_pass = g.id;
+                first_reasons = v.reasons;
+            }
             if (final_image) {
-                rs.status = v.passed && !non_finite ? "passed" : "failed";
-                rs.score = non_finite ? 0.0 : grader::scenePoints(v, scene_points);
+                final_failed = !v.passed;
                 rs.metrics = rp.metrics;
                 rs.frame_metrics = reportMetrics(v.frame, v);
                 rs.worst_region = v.worst.tile;
@@ -257,17 +297,50 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                 rs.student_image = rp.student_image;
                 rs.reference_image = rp.reference_image;
                 rs.diff_image = rp.diff_image;
-                rs.message = joinReasons(v.reasons);
-                if (non_finite && v.nan_count == 0 && v.inf_count == 0)
-                    rs.message = "NaN or Inf in an earlier pass. " + rs.message;
-                if (!rs.first_failing_pass.empty() && scene.passes.size() > 1)
-                    rs.message = "first wrong pass: '" + rs.first_failing_pass + "'. " + rs.message;
             }
             rs.passes.push_back(std::move(rp));
         }
+        rs.status = rs.first_failing_pass.empty() ? "passed" : "failed";
+        // The reasons are the first wrong image's own: a later pass that reads it differs as a
+        // consequence, and its numbers would point the student at the wrong place.
+        if (!rs.first_failing_pass.empty()) {
+            const bool first_is_final = rs.first_failing_pass == rs.passes.back().name;
+            rs.message = (scene.passes.size() > 1 && !first_is_final
+                              ? "first wrong pass: '" + rs.first_failing_pass + "': "
+                              : std::string()) +
+                         joinReasons(first_reasons);
+            if (!first_is_final && final_failed) rs.message += " (the final image differs too)";
+        }
         all_passed = all_passed && rs.status == "passed";
-        lab.score += rs.score;
         lab.scenes.push_back(std::move(rs));
+    }
+
+    // Goals: met when every check of theirs passed. A goal's points are shared among its
+    // scenes for the per-scene figures, so scene scores add up to the lab's.
+    for (const GoalSpec& goal : spec.goals) {
+        grader::ReportGoal rg;
+        rg.id = goal.id;
+        rg.title = goal.title;
+        rg.points = goal.points;
+        rg.met = true;
+        for (const std::string& scene : goal.scenes) {
+            for (const std::string& pass : goal.passes) {
+                const auto it = checks.find({scene, pass});
+                if (it == checks.end() || !it->second) {
+                    rg.met = false;
+                    rg.failing.push_back(scene + "/" + pass);
+                }
+            }
+        }
+        const double share =
+            goal.scenes.empty() ? 0.0 : goal.points / static_cast<double>(goal.scenes.size());
+        for (grader::ReportScene& rs : lab.scenes) {
+            if (std::find(goal.scenes.begin(), goal.scenes.end(), rs.name) == goal.scenes.end()) continue;
+            rs.max_score += share;
+            if (rg.met) rs.score += share;
+        }
+        if (rg.met) lab.score += goal.points;
+        lab.goals.push_back(std::move(rg));
     }
     lab.status = all_passed ? "passed" : "failed";
     if (!write_errors.empty()) lab.message = "could not write images: " + joinReasons(write_errors);
@@ -276,11 +349,11 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
 
 }  // namespace
 
-std::string goldenPath(const std::string& lab_dir, const std::string& scene, const std::string& pass,
-                       bool final_image, bool coverage) {
+std::string goldenPath(const std::string& lab_dir, const std::string& scene, const std::string& image,
+                       bool final_image, bool coverage, bool hdr) {
     std::string name = scene;
-    if (!final_image) name += "." + pass;
-    name += coverage ? ".coverage.png" : ".png";
+    if (!final_image) name += "." + image;
+    name += coverage ? ".coverage.png" : hdr ? ".hdr" : ".png";
     return (fs::path(lab_dir) / "golden" / name).string();
 }
 
@@ -322,15 +395,18 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
         std::error_code ec;
         fs::remove_all(fs::path(lab_dir) / "golden", ec);  // stale goldens of renamed scenes go too
         fs::create_directories(fs::path(lab_dir) / "golden", ec);
+        const std::vector<GradedImage> graded = gradedImages(parsed.spec);
         for (const SceneRender& s : r.render.scenes) {
-            for (std::size_t i = 0; i < s.passes.size(); ++i) {
+            for (std::size_t i = 0; i < s.passes.size() && i < graded.size(); ++i) {
                 const PassImage& p = s.passes[i];
                 const bool final_image = i + 1 == s.passes.size();
+                const GradedImage& g = graded[i];
                 std::string err;
-                if (!grader::writePng(p.color, goldenPath(lab_dir, s.scene, p.pass, final_image, false),
-                                      &err) ||
-                    !grader::writePng(coverageImage(p.coverage, p.color.width, p.color.height),
-                                      goldenPath(lab_dir, s.scene, p.pass, final_image, true), &err))
+                const std::string color = goldenPath(lab_dir, s.scene, g.id, final_image, false, g.hdr);
+                const bool ok =
+                    g.hdr ? grader::writeHdr(p.color, color, &err) : grader::writePng(p.color, color, &err);
+                if (!ok || !grader::writePng(coverageImage(p.coverage, p.color.width, p.color.height),
+                                             goldenPath(lab_dir, s.scene, g.id, final_image, true), &err))
                     errors.push_back(err);
             }
         }

@@ -111,6 +111,7 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
                 writeBytes(dir / (stem + ".cov"), p.coverage.data(), p.coverage.size());
                 passes.push_back({{"pass", p.pass},
                                   {"target", p.target},
+                                  {"attachment", p.attachment},
                                   {"graded", p.graded},
                                   {"width", p.color.width},
                                   {"height", p.color.height},
@@ -176,9 +177,10 @@ bool readChildResult(const fs::path& dir, IsolatedRender* out) {
             PassImage img;
             img.pass = p.value("pass", "");
             img.target = p.value("target", "");
+            img.attachment = p.value("attachment", "");
             img.graded = p.value("graded", false);
             const int w = p.value("width", 0), h = p.value("height", 0);
-            if (w <= 0 || h <= 0 || w > 8192 || h > 8192) return false;
+            if (w <= 0 || h <= 0 || w > 6 * 4096 || h > 4096) return false;
             img.color = grader::Image(w, h, 4);
             img.coverage.resize(static_cast<std::size_t>(w) * h);
             const std::string stem = p.value("file", "");

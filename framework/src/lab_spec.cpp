@@ -1,135 +1,65 @@
 // Turns a lab's lab.json into the typed, validated LabSpec of lab_spec.h.
 //
-// The work happens in four separate steps, each a group of functions below:
+// The work happens in separate steps:
 //   1. load      read the file (size-capped), parse the JSON text, report syntax errors with a
-//                line and column, and refuse duplicate keys (the DOM would silently keep one);
-//   2. read      walk the DOM into a LabSpec, checking what each field can say on its own: its
-//                type, allowed values, range, name pattern, and unknown keys (with a suggestion);
-//   3. validate  check what depends on several fields or on the disk: unique names, inputs and
-//                draw_into referring to earlier passes, files that must exist inside the lab
-//                folder or the labs root, the id matching the folder;
-//   4. complete  fill the defaults that depend on other fields (title, student files, the last
-//                pass graded, the target a draw_into pass shares).
-// Every problem is collected (never just the first) as "<origin>: <json path>: <problem>".
+//                line and column; refuse duplicate keys (the DOM would silently keep one), very
+//                deep nesting and very long strings (both before any recursive code sees them);
+//   2. schema    check the DOM against docs/lab.schema.json with a packaged validator
+//                (json_schema_check.h): types, allowed values, ranges, names, unknown keys;
+//   3. read      expand templates and walk the DOM into a LabSpec (types are known good now);
+//   4. validate  what a schema cannot say: unique names, references between passes, targets,
+//                attachments, scenes and goals, reads before writes, repeat groups, the disk;
+//   5. complete  the defaults that depend on other fields (clears of later writers, the last
+//                pass graded, implicit goals, compare modes).
+// Every problem is collected as "<origin>: <json path>: <problem>"; steps 3-5 run only on a file
+// the schema accepts, so one mistake gives one message rather than a cascade.
 //
-// It does not load scenes, images or shaders (the renderer does), and knows no lab by name:
-// everything lab-specific comes from the JSON. The format is documented in docs/lab-format.md;
-// keep the two in step.
+// It does not load scenes, images or shaders (the renderer does), and knows no lab by name.
 #include "shaderlab/lab_spec.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <glm/gtc/type_ptr.hpp>
-#include <limits>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <system_error>
 #include <utility>
 
+#include "json_messages.h"
+#include "json_schema_check.h"
 #include "shaderlab/paths.h"
 
 namespace shaderlab {
+
+extern const char* const kLabSchemaJson;  // generated from docs/lab.schema.json
+
 namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-using KeyList = std::vector<std::string>;
 
 constexpr std::size_t kMaxLabJsonBytes = std::size_t{1} << 20;
-// Largest target side we accept: far above what a lab needs, small enough that a typo such as
-// 25600 fails here instead of as an out-of-memory error in the driver.
+constexpr std::size_t kMaxDepth = 32;
+constexpr std::size_t kMaxStringBytes = 4096;
 constexpr int kMaxPixels = 4096;
-// OpenGL 3.3 guarantees 16 texture units to a fragment shader; more inputs could not be bound.
-constexpr std::size_t kMaxInputs = 16;
-// The renderer passes at most SL_MAX_LIGHTS (4) lights to shaders and would drop the rest.
-constexpr std::size_t kMaxLights = 4;
-// Uniforms the framework sets itself (docs/student-contract.md). A lab value of the same name
-// would be applied after the framework's and silently replace it.
-const std::vector<std::string> kFrameworkUniforms = {"u_model",
-                                                     "u_view",
-                                                     "u_projection",
-                                                     "u_model_view",
-                                                     "u_model_view_projection",
-                                                     "u_normal_matrix",
-                                                     "u_camera_position",
-                                                     "u_light_count",
-                                                     "u_light_position",
-                                                     "u_light_color",
-                                                     "u_base_color",
-                                                     "u_time",
-                                                     "u_resolution"};
-constexpr std::size_t kMaxQuotedChars = 60;
-
-// =============================================================================================
-// Messages and JSON paths
-
-// A string as it would appear in JSON, ASCII-only and shortened, so that odd bytes or very long
-// values cannot garble a message.
-std::string quote(const std::string& s) {
-    std::string q = json(s).dump(-1, ' ', true, json::error_handler_t::replace);
-    if (q.size() > kMaxQuotedChars) q = q.substr(0, kMaxQuotedChars - 4) + "...\"";
-    return q;
-}
-
-std::string formatNumber(double d) {
-    std::ostringstream s;
-    s << d;
-    return s.str();
-}
-
-// What a value is, for "expected X, got Y" messages.
-std::string describe(const json& v) {
-    switch (v.type()) {
-        case json::value_t::null:
-            return "null";
-        case json::value_t::boolean:
-            return v.get<bool>() ? "true" : "false";
-        case json::value_t::string:
-            return quote(v.get<std::string>());
-        case json::value_t::array:
-            if (v.empty()) return "an empty array";
-            return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
-        case json::value_t::object:
-            return v.empty() ? "an empty object" : "an object";
-        default:
-            return v.is_number() ? v.dump() : "an unsupported value";
-    }
-}
-
-// Names of passes, targets, scenes and lab ids: they become file names of output images, so
-// they stay within a portable set of characters.
-bool isPlainName(const std::string& s) {
-    if (s.empty()) return false;
-    return std::all_of(s.begin(), s.end(),
-                       [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; });
-}
-
-std::string joinKey(const std::string& parent, const std::string& key) {
-    // Keys that are not plain names (only possible for unknown keys or odd uniform names) are
-    // shown quoted so the path stays unambiguous.
-    if (!isPlainName(key)) return parent + "[" + quote(key) + "]";
-    return parent.empty() ? key : parent + "." + key;
-}
-
-std::string joinIndex(const std::string& parent, std::size_t i) {
-    return parent + "[" + std::to_string(i) + "]";
-}
+// Bounds on the work one scene may ask for: passes times repeats (cube targets count six).
+constexpr long kMaxPassRunsPerScene = 20000;
+constexpr long kMaxPassRunsPerLab = 200000;
+const char* const kCubeFaces[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 
 std::string passPath(std::size_t i) { return joinIndex("passes", i); }
 std::string scenePath(std::size_t i) { return joinIndex("scenes", i); }
 
-// Collects "<origin>: <path>: <problem>" lines; an empty path leaves that part out.
 class Diagnostics {
   public:
     explicit Diagnostics(std::string origin) : origin_(std::move(origin)) {}
     void error(const std::string& path, const std::string& problem) {
-        errors_.push_back(path.empty() ? origin_ + ": " + problem : origin_ + ": " + path + ": " + problem);
+        const std::string line =
+            path.empty() ? origin_ + ": " + problem : origin_ + ": " + path + ": " + problem;
+        if (std::find(errors_.begin(), errors_.end(), line) == errors_.end()) errors_.push_back(line);
     }
+    bool any() const { return !errors_.empty(); }
     std::vector<std::string> take() { return std::move(errors_); }
 
   private:
@@ -137,57 +67,9 @@ class Diagnostics {
     std::vector<std::string> errors_;
 };
 
-std::string lowercase(std::string s) {
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
-std::size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i + 1;
-        for (std::size_t j = 0; j < b.size(); ++j) {
-            const std::size_t above = row[j + 1];
-            row[j + 1] = std::min({above + 1, row[j] + 1, diagonal + (a[i] == b[j] ? 0 : 1)});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
-// The candidate a mistyped word most likely meant, or "" when none is close: a few edits away
-// (more for longer words), or one word a prefix of the other ("fov" for "fov_y_deg").
-std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates) {
-    const std::string w = lowercase(word);
-    const std::size_t allowed = std::max<std::size_t>(1, w.size() / 4 + 1);
-    std::string best;
-    std::size_t best_distance = std::numeric_limits<std::size_t>::max();
-    for (const std::string& candidate : candidates) {
-        const std::string c = lowercase(candidate);
-        std::size_t d = editDistance(w, c);
-        const bool prefix = std::min(w.size(), c.size()) >= 3 && (c.rfind(w, 0) == 0 || w.rfind(c, 0) == 0);
-        if (d > allowed && !prefix) continue;
-        if (prefix) d = std::min(d, allowed);
-        if (d < best_distance) {
-            best = candidate;
-            best_distance = d;
-        }
-    }
-    return best;
-}
-
-std::string didYouMean(const std::string& word, const std::vector<std::string>& candidates) {
-    const std::string match = closestMatch(word, candidates);
-    return match.empty() ? "" : " (did you mean " + quote(match) + "?)";
-}
-
 // =============================================================================================
-// Step 1: load: text to JSON DOM
+// Step 1: load
 
-// nlohmann reports a 1-based byte index of the last character it read (n+1 at the end of the
-// input); turn it into a line and a column counted in characters (UTF-8 code points).
 std::string lineColumn(const std::string& text, std::size_t byte) {
     const std::size_t at = std::min(byte == 0 ? 0 : byte - 1, text.size());
     std::size_t line = 1, line_start = 0;
@@ -198,13 +80,11 @@ std::string lineColumn(const std::string& text, std::size_t byte) {
         }
     }
     std::size_t column = 1;
-    for (std::size_t i = line_start; i < at; ++i) {
-        if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) ++column;  // skip continuation bytes
-    }
+    for (std::size_t i = line_start; i < at; ++i)
+        if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) ++column;  // count code points
     return "line " + std::to_string(line) + ", column " + std::to_string(column);
 }
 
-// The part of nlohmann's message after its own "[json.exception...] parse error at ...: " prefix.
 std::string syntaxProblem(const std::string& what) {
     const std::size_t at = what.find("parse error");
     if (at != std::string::npos) {
@@ -215,84 +95,106 @@ std::string syntaxProblem(const std::string& what) {
     return bracket == std::string::npos ? what : what.substr(bracket + 2);
 }
 
-// A SAX pass that only looks for keys repeated within one object. The DOM parser keeps the last
-// value of a repeated key, which would silently drop, say, the first of two "uniforms" blocks.
-class DuplicateKeyFinder : public nlohmann::json_sax<json> {
+// A SAX pass over the text before the DOM is built: keys repeated within one object (the DOM
+// would keep only the last), nesting deeper than kMaxDepth and strings longer than
+// kMaxStringBytes (the schema validator and regexes recurse on both).
+class PreScan : public nlohmann::json_sax<json> {
   public:
-    std::vector<std::string> duplicates;  // JSON paths of repeated keys
+    std::vector<std::pair<std::string, std::string>> problems;  // path, problem
 
     bool null() override { return scalar(); }
     bool boolean(bool) override { return scalar(); }
     bool number_integer(number_integer_t) override { return scalar(); }
     bool number_unsigned(number_unsigned_t) override { return scalar(); }
     bool number_float(number_float_t, const string_t&) override { return scalar(); }
-    bool string(string_t&) override { return scalar(); }
-    bool binary(binary_t&) override { return scalar(); }
-    bool start_object(std::size_t) override {
-        frames_.push_back(Frame{true, {}, {}, 0});
-        return true;
+    bool string(string_t& s) override {
+        if (s.size() > kMaxStringBytes)
+            problems.emplace_back(pathHere(), "a string of " + std::to_string(s.size()) +
+                                                  " bytes is longer than the limit of " +
+                                                  std::to_string(kMaxStringBytes));
+        return scalar();
     }
+    bool binary(binary_t&) override { return scalar(); }
+    bool start_object(std::size_t) override { return open(true); }
     bool key(string_t& k) override {
         Frame& f = frames_.back();
-        if (!f.keys.insert(k).second) duplicates.push_back(joinKey(pathOfTop(), k));
+        if (k.size() > kMaxStringBytes) {
+            problems.emplace_back(pathOfTop(), "a key of " + std::to_string(k.size()) + " bytes is too long");
+            return false;
+        }
+        if (!f.keys.insert(k).second)
+            problems.emplace_back(joinKey(pathOfTop(), k),
+                                  "duplicate key: it appears more than once in this object, and only the "
+                                  "last one would count");
         f.key = k;
         return true;
     }
-    bool end_object() override { return endContainer(); }
-    bool start_array(std::size_t) override {
-        frames_.push_back(Frame{false, {}, {}, 0});
-        return true;
-    }
-    bool end_array() override { return endContainer(); }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return open(false); }
+    bool end_array() override { return close(); }
     bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
-        return false;  // the DOM parse already reported it
+        return false;
     }
 
   private:
     struct Frame {
         bool is_object;
         std::set<std::string> keys;
-        std::string key;        // current member, for objects
-        std::size_t index = 0;  // current element, for arrays
+        std::string key;
+        std::size_t index = 0;
     };
-
-    // The path of the innermost open container: each enclosing frame contributes the member or
-    // element it is currently inside.
+    bool open(bool is_object) {
+        if (frames_.size() >= kMaxDepth) {
+            problems.emplace_back(pathOfTop(), "nested deeper than " + std::to_string(kMaxDepth) + " levels");
+            return false;  // stop: the DOM must not be built either
+        }
+        frames_.push_back(Frame{is_object, {}, {}, 0});
+        return true;
+    }
     std::string pathOfTop() const {
         std::string path;
-        for (std::size_t i = 0; i + 1 < frames_.size(); ++i) {
+        for (std::size_t i = 0; i + 1 < frames_.size(); ++i)
             path = frames_[i].is_object ? joinKey(path, frames_[i].key) : joinIndex(path, frames_[i].index);
-        }
         return path;
+    }
+    std::string pathHere() const {
+        if (frames_.empty()) return "";
+        const Frame& f = frames_.back();
+        return f.is_object ? joinKey(pathOfTop(), f.key) : joinIndex(pathOfTop(), f.index);
     }
     bool scalar() {
         if (!frames_.empty() && !frames_.back().is_object) ++frames_.back().index;
         return true;
     }
-    bool endContainer() {
+    bool close() {
         frames_.pop_back();
-        return scalar();  // the finished container is one element of its parent
+        return scalar();
     }
-
     std::vector<Frame> frames_;
 };
 
-// Parses `text`; false when there is no usable DOM. Duplicate keys are reported but do not stop
-// the rest of the checks.
 bool loadJson(const std::string& text, Diagnostics& diag, json& out) {
     if (text.size() > kMaxLabJsonBytes) {
         diag.error("", "is " + std::to_string(text.size()) + " bytes, more than the limit of " +
                            std::to_string(kMaxLabJsonBytes) + " (1 MiB)");
         return false;
     }
+    PreScan scan;
+    bool syntax_ok = true;
+    try {
+        syntax_ok = json::sax_parse(text, &scan);
+    } catch (const json::exception&) {
+        syntax_ok = false;  // reported by the DOM parse below
+    }
+    for (const auto& [path, problem] : scan.problems) diag.error(path, problem);
+    if (!syntax_ok && !scan.problems.empty()) return false;  // stopped for depth: do not build the DOM
     try {
         out = json::parse(text);
     } catch (const json::parse_error& e) {
         diag.error(lineColumn(text, e.byte), syntaxProblem(e.what()));
         return false;
     } catch (const json::exception& e) {
-        // e.g. "number overflow parsing '1e999'": no position in the exception, so find the
-        // quoted literal in the text to point at it.
+        // e.g. "number overflow parsing '1e999'": find the literal to point at it.
         const std::string what = e.what();
         std::string where;
         const std::size_t open = what.find('\'');
@@ -304,1077 +206,1088 @@ bool loadJson(const std::string& text, Diagnostics& diag, json& out) {
         diag.error(where, syntaxProblem(what));
         return false;
     }
-    DuplicateKeyFinder finder;
-    json::sax_parse(text, &finder);
-    for (const std::string& path : finder.duplicates) {
-        diag.error(
-            path,
-            "duplicate key: it appears more than once in this object, and only the last one would count");
-    }
-    return true;
+    return !diag.any();
 }
 
 // =============================================================================================
-// Step 2: read: DOM to typed spec, checking each field on its own
+// Step 2: schema
 
-// Allowed numeric interval, with its own wording for messages.
-struct Range {
-    double lo = -std::numeric_limits<double>::infinity();
-    double hi = std::numeric_limits<double>::infinity();
-    bool lo_open = false, hi_open = false;
+const json& labSchema() {
+    static const json schema = json::parse(kLabSchemaJson);
+    return schema;
+}
 
-    static Range any() { return {}; }
-    static Range closed(double l, double h) { return {l, h, false, false}; }
-    static Range openClosed(double l, double h) { return {l, h, true, false}; }
-    static Range open(double l, double h) { return {l, h, true, true}; }
-    static Range above(double l) { return {l, std::numeric_limits<double>::infinity(), true, false}; }
-    static Range atLeast(double l) { return {l, std::numeric_limits<double>::infinity(), false, false}; }
+const JsonSchemaChecker& labSchemaChecker() {
+    static const JsonSchemaChecker checker(labSchema());
+    return checker;
+}
 
-    bool contains(double x) const { return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi); }
-    std::string text() const {
-        if (std::isinf(hi)) return (lo_open ? "greater than " : "at least ") + formatNumber(lo);
-        return std::string("in ") + (lo_open ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) +
-               (hi_open ? ")" : "]");
+// =============================================================================================
+// Step 3: read
+
+template <typename E>
+E pick(const std::string& s, std::initializer_list<std::pair<const char*, E>> choices) {
+    for (const auto& [name, value] : choices)
+        if (s == name) return value;
+    return choices.begin()->second;  // the schema admits only the names above
+}
+
+TextureFilter readFilter(const json& v) {
+    return pick<TextureFilter>(v, {{"linear", TextureFilter::Linear},
+                                   {"nearest", TextureFilter::Nearest},
+                                   {"mipmap", TextureFilter::Mipmap}});
+}
+
+TextureWrap readWrap(const json& v) {
+    return pick<TextureWrap>(v, {{"clamp", TextureWrap::ClampToEdge},
+                                 {"repeat", TextureWrap::Repeat},
+                                 {"mirror", TextureWrap::MirroredRepeat}});
+}
+
+glm::vec3 readVec3(const json& v) { return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()}; }
+glm::vec4 readVec4(const json& v) {
+    return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>(), v[3].get<float>()};
+}
+
+void readUniforms(const json& v, const std::string& path, UniformList& out) {
+    for (const auto& item : v.items()) out.push_back({item.key(), item.value(), joinKey(path, item.key())});
+}
+
+// A pass's target object, or a top-level target.
+void readTarget(const json& v, const std::string& path, TargetSpec& t) {
+    t.path = path;
+    if (v.contains("name")) t.name = v["name"];
+    if (v.contains("format"))
+        t.format = pick<TargetFormat>(v["format"], {{"rgba32f", TargetFormat::RGBA32F},
+                                                    {"rgba8", TargetFormat::RGBA8},
+                                                    {"srgb8", TargetFormat::SRGB8},
+                                                    {"rgba16f", TargetFormat::RGBA16F}});
+    if (v.contains("type")) t.type = v["type"] == "cube" ? TargetType::Cube : TargetType::Texture2D;
+    if (v.contains("size")) {
+        t.width = v["size"][0];
+        t.height = v["size"][1];
     }
+    if (v.contains("scale")) t.scale = v["scale"];
+    if (v.contains("attachments")) t.attachments = v["attachments"].get<std::vector<std::string>>();
+    if (v.contains("depth"))
+        t.depth = pick<DepthMode>(
+            v["depth"],
+            {{"buffer", DepthMode::Buffer}, {"none", DepthMode::None}, {"texture", DepthMode::Texture}});
+    if (v.contains("filter")) t.filter = readFilter(v["filter"]);
+    if (v.contains("wrap")) t.wrap = readWrap(v["wrap"]);
+}
+
+void readCamera(const json& v, CameraOverride& c) {
+    if (v.contains("position")) c.position = readVec3(v["position"]);
+    if (v.contains("target")) c.target = readVec3(v["target"]);
+    if (v.contains("up")) c.up = readVec3(v["up"]);
+    if (v.contains("fov_y_deg")) c.fov_y_deg = v["fov_y_deg"].get<float>();
+    if (v.contains("near")) c.z_near = v["near"].get<float>();
+    if (v.contains("far")) c.z_far = v["far"].get<float>();
+    if (v.contains("projection"))
+        c.projection = v["projection"] == "orthographic" ? Projection::Orthographic : Projection::Perspective;
+    if (v.contains("height")) c.height = v["height"].get<float>();
+    if (v.contains("light")) c.light = v["light"].get<int>();
+}
+
+void readThresholds(const json& v, GradingThresholds& t) {
+    if (v.contains("psnr_min_db")) t.psnr_min_db = v["psnr_min_db"];
+    if (v.contains("ssim_min")) t.ssim_min = v["ssim_min"];
+    if (v.contains("flip_mean_max")) t.flip_mean_max = v["flip_mean_max"];
+    if (v.contains("mismatch_max")) t.mismatch_max = v["mismatch_max"];
+    if (v.contains("pixel_tolerance")) t.pixel_tolerance = v["pixel_tolerance"];
+}
+
+// What lab.json says of a pass before defaults that depend on other passes are filled in.
+struct PassDraft {
+    json dom;                       // the pass after its template was merged in
+    std::string template_name;      // "" without extends
+    std::string target_ref;         // a target named by string, or "" for an owned target
+    std::optional<TargetSpec> own;  // owned target
+    std::optional<json> clear_color;
+    std::optional<bool> clear_depth, depth_test, depth_write, graded_flag;
+    std::vector<std::string> graded_list;
+    std::optional<CompareMode> compare;
+    std::optional<int> repeat_count;
+    std::string repeat_from;
 };
 
-template <class E>
-using Choices = std::vector<std::pair<const char*, E>>;
-
-const Choices<DrawKind> kDrawKinds = {{"scene", DrawKind::Scene}, {"fullscreen", DrawKind::Fullscreen}};
-const Choices<TargetFormat> kFormats = {
-    {"rgba8", TargetFormat::RGBA8}, {"rgba16f", TargetFormat::RGBA16F}, {"rgba32f", TargetFormat::RGBA32F}};
-const Choices<TextureFilter> kFilters = {{"nearest", TextureFilter::Nearest},
-                                         {"linear", TextureFilter::Linear}};
-const Choices<TextureWrap> kWraps = {{"clamp", TextureWrap::ClampToEdge},
-                                     {"repeat", TextureWrap::Repeat},
-                                     {"mirror", TextureWrap::MirroredRepeat}};
-const Choices<DepthFunc> kDepthFuncs = {
-    {"less", DepthFunc::Less}, {"lequal", DepthFunc::LessEqual}, {"always", DepthFunc::Always}};
-const Choices<CullMode> kCullModes = {
-    {"back", CullMode::Back}, {"front", CullMode::Front}, {"none", CullMode::None}};
-const Choices<PolygonMode> kPolygonModes = {{"fill", PolygonMode::Fill}, {"line", PolygonMode::Line}};
-const Choices<BlendMode> kBlendModes = {
-    {"none", BlendMode::None}, {"alpha", BlendMode::Alpha}, {"additive", BlendMode::Additive}};
-const Choices<std::string> kLightTypes = {{"point", "point"}, {"directional", "directional"}};
-
-const KeyList kTopKeys = {"schema",        "id",     "title",  "resolution",
-                          "student_files", "passes", "scenes", "grading"};
-const KeyList kPassKeys = {"name",      "program", "draw",     "inputs", "target",
-                           "draw_into", "state",   "uniforms", "graded"};
-const KeyList kProgramKeys = {"vertex", "fragment"};
-const KeyList kInputKeys = {"sampler", "pass", "texture", "filter", "wrap"};
-const KeyList kTargetKeys = {"name", "format", "size", "scale", "filter", "wrap"};
-const KeyList kStateKeys = {"clear_color", "clear_depth",  "depth_test", "depth_write", "depth_func",
-                            "cull",        "polygon_mode", "line_width", "blend"};
-const KeyList kSceneKeys = {"name", "file", "camera", "lights", "uniforms", "time"};
-const KeyList kCameraKeys = {"position", "target", "up", "fov_y_deg", "near", "far"};
-const KeyList kLightKeys = {"type", "position", "direction", "color", "intensity"};
-const KeyList kGradingKeys = {"points",        "psnr_min_db",  "ssim_min",
-                              "flip_mean_max", "mismatch_max", "pixel_tolerance"};
-const KeyList kUniformObjectKeys = {"int", "bool"};
-
-// Typed access to DOM values. Each reader reports what is wrong with the value at `path` and
-// returns false, leaving `out` untouched so the spec keeps its default there.
-class FieldReader {
-  public:
-    explicit FieldReader(Diagnostics& diag) : diag_(diag) {}
-
-    void error(const std::string& path, const std::string& problem) { diag_.error(path, problem); }
-    void typeError(const std::string& path, const std::string& expected, const json& got) {
-        error(path, "expected " + expected + ", got " + describe(got));
-    }
-
-    static const json* find(const json& obj, const char* key) {
-        const auto it = obj.find(key);
-        return it == obj.end() ? nullptr : &*it;
-    }
-
-    const json* require(const json& obj, const std::string& path, const char* key) {
-        const json* v = find(obj, key);
-        if (!v) error(joinKey(path, key), "required field is missing");
-        return v;
-    }
-
-    // `v` must be an object, and every key must be in `allowed` (catches typos, which would
-    // otherwise silently fall back to a default). False only when `v` is not an object at all.
-    bool object(const json& v, const std::string& path, const KeyList& allowed) {
-        if (!v.is_object()) {
-            typeError(path, "an object", v);
-            return false;
+// Templates and passes merge member by member one level into the blocks that are maps
+// (uniforms, inputs, state, program, camera, thresholds); any other field of the pass replaces
+// the template's.
+json mergeTemplate(const json& base, const json& pass) {
+    json out = base;
+    for (const auto& item : pass.items()) {
+        static const std::set<std::string> maps = {"uniforms", "inputs", "state",
+                                                   "program",  "camera", "thresholds"};
+        if (maps.count(item.key()) && out.contains(item.key()) && out[item.key()].is_object() &&
+            item.value().is_object()) {
+            for (const auto& member : item.value().items()) out[item.key()][member.key()] = member.value();
+        } else {
+            out[item.key()] = item.value();
         }
-        for (const auto& item : v.items()) {
-            if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
-            const std::string suggestion = closestMatch(item.key(), allowed);
-            if (!suggestion.empty()) {
-                error(joinKey(path, item.key()), "unknown key (did you mean " + quote(suggestion) + "?)");
-            } else {
-                std::string list;
-                for (const std::string& k : allowed) list += (list.empty() ? "" : ", ") + k;
-                error(joinKey(path, item.key()), "unknown key; allowed here: " + list);
+    }
+    return out;
+}
+
+class Reader {
+  public:
+    Reader(const json& doc, Diagnostics& diag, LabSpec& spec) : doc_(doc), diag_(diag), spec_(spec) {}
+
+    void run() {
+        spec_.schema = doc_["schema"];
+        spec_.id = doc_["id"];
+        spec_.title = doc_.value("title", "");
+        if (doc_.contains("resolution")) {
+            spec_.width = doc_["resolution"][0];
+            spec_.height = doc_["resolution"][1];
+        }
+        if (doc_.contains("student_files"))
+            spec_.student_files = doc_["student_files"].get<std::vector<std::string>>();
+        if (doc_.contains("grading")) {
+            const json& g = doc_["grading"];
+            readThresholds(g, spec_.grading.thresholds);
+            if (g.contains("points")) spec_.grading.points = g["points"];
+        }
+        if (doc_.contains("targets")) {
+            for (const auto& item : doc_["targets"].items()) {
+                TargetSpec t;
+                readTarget(item.value(), joinKey("targets", item.key()), t);
+                if (item.value().contains("name"))
+                    diag_.error(joinKey(joinKey("targets", item.key()), "name"),
+                                "a target under \"targets\" is named by its key; leave \"name\" out");
+                t.name = item.key();
+                spec_.targets.push_back(std::move(t));
             }
         }
-        return true;
-    }
-
-    bool array(const json& v, const std::string& path, const std::string& of) {
-        if (v.is_array()) return true;
-        typeError(path, "an array of " + of, v);
-        return false;
-    }
-
-    // Strings are never empty in a lab.json: an empty name or path is always a mistake.
-    bool string(const json& v, const std::string& path, std::string& out) {
-        if (!v.is_string()) {
-            typeError(path, "a string", v);
-            return false;
-        }
-        if (v.get_ref<const std::string&>().empty()) {
-            error(path, "must not be empty");
-            return false;
-        }
-        out = v.get<std::string>();
-        return true;
-    }
-
-    bool name(const json& v, const std::string& path, std::string& out) {
-        std::string s;
-        if (!string(v, path, s)) return false;
-        if (!isPlainName(s)) {
-            error(path, quote(s) + " is not a valid name: use only letters, digits, '_' and '-'");
-            return false;
-        }
-        out = s;
-        return true;
-    }
-
-    // A GLSL uniform name (samplers and uniforms).
-    bool glslName(const json& v, const std::string& path, std::string& out) {
-        std::string s;
-        if (!string(v, path, s)) return false;
-        const std::string problem = glslNameProblem(s);
-        if (!problem.empty()) {
-            error(path, problem);
-            return false;
-        }
-        out = s;
-        return true;
-    }
-
-    static std::string glslNameProblem(const std::string& s) {
-        const auto ok_first = [](unsigned char c) { return std::isalpha(c) || c == '_'; };
-        const auto ok_rest = [](unsigned char c) { return std::isalnum(c) || c == '_'; };
-        if (s.empty() || !ok_first(static_cast<unsigned char>(s[0])) ||
-            !std::all_of(s.begin(), s.end(),
-                         [&](char c) { return ok_rest(static_cast<unsigned char>(c)); })) {
-            return quote(s) +
-                   " is not a valid GLSL identifier (letters, digits and '_', not starting with a digit)";
-        }
-        if (s.rfind("gl_", 0) == 0) return quote(s) + ": names starting with \"gl_\" are reserved by GLSL";
-        if (std::find(kFrameworkUniforms.begin(), kFrameworkUniforms.end(), s) != kFrameworkUniforms.end()) {
-            return quote(s) + " is set by the framework (docs/student-contract.md); choose another name" +
-                   (s == "u_time" ? " (a scene's \"time\" sets u_time)" : "");
-        }
-        return "";
-    }
-
-    bool boolean(const json& v, const std::string& path, bool& out) {
-        if (!v.is_boolean()) {
-            typeError(path, "true or false", v);
-            return false;
-        }
-        out = v.get<bool>();
-        return true;
-    }
-
-    // Any JSON number that fits a finite 32-bit float and lies in `range`.
-    bool number(const json& v, const std::string& path, float& out, const Range& range = Range::any()) {
-        if (!v.is_number()) {
-            typeError(path, "a number", v);
-            return false;
-        }
-        const double d = v.get<double>();
-        if (!std::isfinite(d) || std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max())) {
-            error(path, v.dump() + " is too large for a 32-bit float");
-            return false;
-        }
-        if (!range.contains(d)) {
-            error(path, "must be " + range.text() + ", got " + v.dump());
-            return false;
-        }
-        out = static_cast<float>(d);
-        return true;
-    }
-
-    bool integer(const json& v, const std::string& path, int& out, const Range& range = Range::any()) {
-        if (!v.is_number_integer()) {
-            typeError(path, "an integer", v);
-            return false;
-        }
-        const bool fits =
-            v.is_number_unsigned()
-                ? v.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max())
-                : v.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
-                      v.get<std::int64_t>() <= std::numeric_limits<int>::max();
-        if (!fits) {
-            error(path, v.dump() + " does not fit a 32-bit integer");
-            return false;
-        }
-        const int i = v.get<int>();
-        if (!range.contains(i)) {
-            error(path, "must be " + range.text() + ", got " + v.dump());
-            return false;
-        }
-        out = i;
-        return true;
-    }
-
-    // Exactly `count` numbers; writes `out` only when all of them are valid.
-    bool numbers(const json& v, const std::string& path, std::size_t count, float* out,
-                 const Range& range = Range::any()) {
-        if (!v.is_array() || v.size() != count) {
-            typeError(path, "an array of " + std::to_string(count) + " numbers", v);
-            return false;
-        }
-        std::vector<float> values(count);
-        bool ok = true;
-        for (std::size_t i = 0; i < count; ++i) ok = number(v[i], joinIndex(path, i), values[i], range) && ok;
-        if (ok) std::copy(values.begin(), values.end(), out);
-        return ok;
-    }
-
-    bool vec3(const json& v, const std::string& path, glm::vec3& out, const Range& range = Range::any()) {
-        return numbers(v, path, 3, glm::value_ptr(out), range);
-    }
-
-    template <class E>
-    bool choice(const json& v, const std::string& path, const Choices<E>& choices, E& out) {
-        if (v.is_string()) {
-            for (const auto& [text, value] : choices) {
-                if (v.get_ref<const std::string&>() == text) {
-                    out = value;
-                    return true;
+        if (doc_.contains("templates")) {
+            for (const auto& item : doc_["templates"].items()) {
+                for (const char* key : {"name", "extends", "repeat"}) {
+                    if (item.value().contains(key))
+                        diag_.error(joinKey(joinKey("templates", item.key()), key),
+                                    std::string("a template cannot have \"") + key +
+                                        "\" (it belongs to the passes that extend it)");
                 }
             }
         }
-        std::string list;
-        for (const auto& choice_entry : choices)
-            list += (list.empty() ? "\"" : ", \"") + std::string(choice_entry.first) + "\"";
-        error(path, "expected one of " + list + ", got " + describe(v));
-        return false;
+        const json& passes = doc_["passes"];
+        drafts_.resize(passes.size());
+        for (std::size_t i = 0; i < passes.size(); ++i) readPass(passes[i], i);
+        const json& scenes = doc_["scenes"];
+        for (std::size_t i = 0; i < scenes.size(); ++i) readScene(scenes[i], i);
+        if (doc_.contains("goals")) {
+            const json& goals = doc_["goals"];
+            for (std::size_t i = 0; i < goals.size(); ++i) {
+                GoalSpec g;
+                g.id = goals[i]["id"];
+                g.title = goals[i]["title"];
+                g.points = goals[i]["points"];
+                if (goals[i].contains("scenes"))
+                    g.scenes = goals[i]["scenes"].get<std::vector<std::string>>();
+                if (goals[i].contains("passes"))
+                    g.passes = goals[i]["passes"].get<std::vector<std::string>>();
+                spec_.goals.push_back(std::move(g));
+            }
+            if (doc_.contains("grading") && doc_["grading"].contains("points"))
+                diag_.error("grading.points",
+                            "cannot be given with goals: the lab's points are the sum of its goals' points");
+        }
     }
 
-    // Shorthands for optional fields: read obj[key] when present, keep the default otherwise.
-    void optBool(const json& obj, const std::string& path, const char* key, bool& out) {
-        if (const json* v = find(obj, key)) boolean(*v, joinKey(path, key), out);
+    std::vector<PassDraft>& drafts() { return drafts_; }
+
+  private:
+    void readPass(const json& raw, std::size_t i) {
+        const std::string path = passPath(i);
+        PassDraft& d = drafts_[i];
+        d.dom = raw;
+        if (raw.contains("extends")) {
+            d.template_name = raw["extends"];
+            const json* templates = doc_.contains("templates") ? &doc_["templates"] : nullptr;
+            if (!templates || !templates->contains(d.template_name)) {
+                std::vector<std::string> names;
+                if (templates)
+                    for (const auto& item : templates->items()) names.push_back(item.key());
+                diag_.error(joinKey(path, "extends"), "no template is called " + quoteJson(d.template_name) +
+                                                          didYouMean(d.template_name, names));
+            } else {
+                d.dom = mergeTemplate((*templates)[d.template_name], raw);
+            }
+        }
+        const json& v = d.dom;
+        const std::string from = d.template_name.empty() ? ""
+                                                         : " (neither the pass nor its template " +
+                                                               quoteJson(d.template_name) + " gives it)";
+        PassSpec p;
+        p.path = path;
+        if (v.contains("name"))
+            p.name = v["name"];
+        else
+            diag_.error(joinKey(path, "name"), "is required");
+        if (!v.contains("program")) {
+            diag_.error(joinKey(path, "program"), "is required" + from);
+        } else {
+            for (const char* stage : {"vertex", "fragment"}) {
+                if (!v["program"].contains(stage))
+                    diag_.error(joinKey(joinKey(path, "program"), stage), "is required" + from);
+            }
+            p.program.vertex = v["program"].value("vertex", "");
+            p.program.fragment = v["program"].value("fragment", "");
+        }
+        if (v.contains("draw")) {
+            const json& draw = v["draw"];
+            if (draw.is_string()) {
+                p.draw = draw == "fullscreen" ? DrawKind::Fullscreen : DrawKind::Scene;
+            } else {
+                p.draw = DrawKind::Procedural;
+                p.primitive =
+                    pick<Primitive>(draw["primitive"], {{"points", Primitive::Points},
+                                                        {"lines", Primitive::Lines},
+                                                        {"line_strip", Primitive::LineStrip},
+                                                        {"triangles", Primitive::Triangles},
+                                                        {"triangle_strip", Primitive::TriangleStrip}});
+                p.vertex_count = draw["count"];
+            }
+        }
+        if (v.contains("target")) {
+            if (v["target"].is_string()) {
+                d.target_ref = v["target"];
+            } else {
+                TargetSpec t;
+                readTarget(v["target"], joinKey(path, "target"), t);
+                if (t.name.empty()) t.name = p.name;
+                d.own = std::move(t);
+            }
+        } else {
+            TargetSpec t;
+            t.name = p.name;
+            t.path = path;
+            d.own = std::move(t);
+        }
+        if (v.contains("inputs")) {
+            for (const auto& item : v["inputs"].items())
+                p.inputs.push_back(readInput(item.value(), item.key(), path));
+        }
+        if (v.contains("state")) readState(v["state"], joinKey(path, "state"), p.state, d);
+        if (v.contains("uniforms")) readUniforms(v["uniforms"], joinKey(path, "uniforms"), p.uniforms);
+        if (v.contains("camera")) readCamera(v["camera"], p.camera);
+        if (v.contains("graded")) {
+            if (v["graded"].is_boolean())
+                d.graded_flag = v["graded"].get<bool>();
+            else
+                d.graded_list = v["graded"].get<std::vector<std::string>>();
+        }
+        if (v.contains("compare"))
+            d.compare = v["compare"] == "hdr" ? CompareMode::Hdr : CompareMode::Display;
+        p.thresholds = spec_.grading.thresholds;
+        if (v.contains("thresholds")) readThresholds(v["thresholds"], p.thresholds);
+        if (v.contains("repeat")) {
+            if (v["repeat"].is_number_integer()) {
+                d.repeat_count = v["repeat"].get<int>();
+            } else {
+                d.repeat_count = v["repeat"]["count"].get<int>();
+                d.repeat_from = v["repeat"]["from"];
+            }
+        }
+        spec_.passes.push_back(std::move(p));
     }
-    void optNumber(const json& obj, const std::string& path, const char* key, float& out,
-                   const Range& range = Range::any()) {
-        if (const json* v = find(obj, key)) number(*v, joinKey(path, key), out, range);
+
+    PassInput readInput(const json& v, const std::string& sampler, const std::string& pass_path) {
+        PassInput in;
+        in.sampler = sampler;
+        in.path = joinKey(joinKey(pass_path, "inputs"), sampler);
+        auto splitTarget = [&in](const std::string& ref) {
+            const std::size_t dot = ref.find('.');
+            in.source = InputSource::Target;
+            in.target = ref.substr(0, dot);
+            in.attachment = dot == std::string::npos ? "" : ref.substr(dot + 1);
+        };
+        if (v.is_string()) {
+            splitTarget(v);
+            return in;
+        }
+        int sources = 0;
+        if (v.contains("target")) {
+            splitTarget(v["target"]);
+            ++sources;
+        }
+        if (v.contains("texture")) {
+            in.source = InputSource::File;
+            in.file = v["texture"];
+            ++sources;
+        }
+        if (v.contains("cube")) {
+            in.source = InputSource::Cube;
+            const json& c = v["cube"];
+            if (c.is_string()) {
+                const std::string pattern = c;
+                const std::size_t at = pattern.find("{face}");
+                if (at == std::string::npos)
+                    diag_.error(joinKey(in.path, "cube"),
+                                "a single path must contain {face} (replaced by px, nx, py, ny, pz, nz)");
+                else
+                    for (const char* face : kCubeFaces)
+                        in.cube_files.push_back(pattern.substr(0, at) + face + pattern.substr(at + 6));
+            } else {
+                in.cube_files = c.get<std::vector<std::string>>();
+            }
+            ++sources;
+        }
+        if (v.contains("generate")) {
+            in.source = InputSource::Generated;
+            const json& g = v["generate"];
+            GeneratedTexture& t = in.generated;
+            t.pattern = g["pattern"];
+            const json& size = g["size"];
+            t.width = size[0];
+            t.height = size.size() > 1 ? size[1].get<int>() : 1;
+            t.depth = size.size() > 2 ? size[2].get<int>() : 1;
+            if (g.contains("colors"))
+                for (const json& c : g["colors"]) t.colors.push_back(readVec4(c));
+            if (g.contains("cells")) t.cells = g["cells"];
+            if (g.contains("seed")) t.seed = g["seed"].get<std::uint32_t>();
+            const std::size_t need = t.pattern == "checker"    ? 2
+                                     : t.pattern == "gradient" ? 2
+                                     : t.pattern == "constant" ? 1
+                                                               : 0;
+            if (t.colors.empty()) {
+                if (t.pattern == "checker" || t.pattern == "gradient")
+                    t.colors = {glm::vec4(0, 0, 0, 1), glm::vec4(1)};
+                if (t.pattern == "constant") t.colors = {glm::vec4(1)};
+            } else if (t.colors.size() < need || (t.pattern == "constant" && t.colors.size() != 1) ||
+                       (t.pattern == "checker" && t.colors.size() != 2) || t.pattern == "noise") {
+                diag_.error(
+                    joinKey(joinKey(in.path, "generate"), "colors"),
+                    t.pattern == "noise"
+                        ? std::string("noise takes no colours (its values are uniform in [0, 1))")
+                    : t.pattern == "gradient" ? std::string("a gradient needs at least two colour stops")
+                    : t.pattern == "checker"  ? std::string("a checker takes exactly two colours")
+                                              : std::string("a constant texture takes exactly one colour"));
+            }
+            const double texels = double(t.width) * t.height * t.depth;
+            if (texels > 16.0 * 1024 * 1024)
+                diag_.error(joinKey(joinKey(in.path, "generate"), "size"),
+                            "has " + formatNumber(texels) + " texels; at most 16777216 are allowed");
+            ++sources;
+        }
+        if (sources != 1)
+            diag_.error(in.path, sources == 0
+                                     ? "give one source: \"target\", \"texture\", \"cube\" or \"generate\""
+                                     : "give only one source of \"target\", \"texture\", \"cube\" and "
+                                       "\"generate\"");
+        if (v.contains("layers") && in.source != InputSource::File)
+            diag_.error(joinKey(in.path, "layers"), "only a \"texture\" file can be cut into layers");
+        if (v.contains("srgb") && (in.source == InputSource::Target))
+            diag_.error(
+                joinKey(in.path, "srgb"),
+                "applies to files and generated textures; a target's encoding is its format (\"srgb8\")");
+        if (v.contains("layers")) in.layers = v["layers"];
+        if (v.contains("filter")) in.filter = readFilter(v["filter"]);
+        if (v.contains("wrap")) in.wrap = readWrap(v["wrap"]);
+        in.srgb = v.value("srgb", false);
+        return in;
     }
-    template <class E>
-    void optChoice(const json& obj, const std::string& path, const char* key, const Choices<E>& choices,
-                   E& out) {
-        if (const json* v = find(obj, key)) choice(*v, joinKey(path, key), choices, out);
+
+    void readState(const json& v, const std::string& path, RenderState& s, PassDraft& d) {
+        (void)path;
+        if (v.contains("clear_color")) d.clear_color = v["clear_color"];
+        if (v.contains("clear_depth")) d.clear_depth = v["clear_depth"].get<bool>();
+        if (v.contains("depth_test")) d.depth_test = v["depth_test"].get<bool>();
+        if (v.contains("depth_write")) d.depth_write = v["depth_write"].get<bool>();
+        if (v.contains("depth_func"))
+            s.depth_func = pick<DepthFunc>(v["depth_func"], {{"less", DepthFunc::Less},
+                                                             {"never", DepthFunc::Never},
+                                                             {"equal", DepthFunc::Equal},
+                                                             {"lequal", DepthFunc::LessEqual},
+                                                             {"greater", DepthFunc::Greater},
+                                                             {"notequal", DepthFunc::NotEqual},
+                                                             {"gequal", DepthFunc::GreaterEqual},
+                                                             {"always", DepthFunc::Always}});
+        if (v.contains("cull"))
+            s.cull = pick<CullMode>(
+                v["cull"], {{"back", CullMode::Back}, {"front", CullMode::Front}, {"none", CullMode::None}});
+        if (v.contains("polygon_mode"))
+            s.polygon_mode = pick<PolygonMode>(
+                v["polygon_mode"],
+                {{"fill", PolygonMode::Fill}, {"line", PolygonMode::Line}, {"point", PolygonMode::Point}});
+        if (v.contains("line_width")) s.line_width = v["line_width"];
+        if (v.contains("point_size")) s.point_size = v["point_size"];
+        if (v.contains("blend"))
+            s.blend = pick<BlendMode>(v["blend"], {{"none", BlendMode::None},
+                                                   {"alpha", BlendMode::Alpha},
+                                                   {"additive", BlendMode::Additive},
+                                                   {"premultiplied", BlendMode::Premultiplied}});
     }
-    template <class E>
-    void optChoice(const json& obj, const std::string& path, const char* key, const Choices<E>& choices,
-                   std::optional<E>& out) {
-        E value{};
-        if (const json* v = find(obj, key); v && choice(*v, joinKey(path, key), choices, value)) out = value;
+
+    void readScene(const json& v, std::size_t i) {
+        const std::string path = scenePath(i);
+        SceneSpec s;
+        s.path = path;
+        s.base_name = v["name"];
+        s.name = s.base_name;
+        s.file = v.value("file", "");
+        if (v.contains("camera")) readCamera(v["camera"], s.camera);
+        if (v.contains("lights")) {
+            std::vector<LightSpec> lights;
+            const json& ls = v["lights"];
+            for (std::size_t k = 0; k < ls.size(); ++k)
+                lights.push_back(readLight(ls[k], joinIndex(joinKey(path, "lights"), k)));
+            s.lights = std::move(lights);
+        }
+        if (v.contains("uniforms")) readUniforms(v["uniforms"], joinKey(path, "uniforms"), s.uniforms);
+        if (v.contains("time")) s.time = v["time"];
+        if (v.contains("repeats"))
+            for (const auto& item : v["repeats"].items()) s.repeats[item.key()] = item.value();
+        if (v.contains("times")) {
+            const json& times = v["times"];
+            for (std::size_t k = 0; k < times.size(); ++k) {
+                SceneSpec t = s;
+                t.name = s.base_name + "_t" + std::to_string(k);
+                t.time = times[k];
+                t.path = joinIndex(joinKey(path, "times"), k);
+                spec_.scenes.push_back(std::move(t));
+            }
+        } else {
+            spec_.scenes.push_back(std::move(s));
+        }
+    }
+
+    LightSpec readLight(const json& v, const std::string& path) {
+        LightSpec l;
+        l.type = v["type"];
+        const bool point = l.type == "point";
+        if (v.contains("position")) l.position = readVec3(v["position"]);
+        if (v.contains("direction")) l.direction = readVec3(v["direction"]);
+        if (v.contains("color")) l.color = readVec3(v["color"]);
+        if (v.contains("intensity")) l.intensity = v["intensity"];
+        if (point && !v.contains("position"))
+            diag_.error(joinKey(path, "position"), "required for a point light");
+        if (point && v.contains("direction"))
+            diag_.error(joinKey(path, "direction"),
+                        "a point light shines in every direction; give only \"position\"");
+        if (!point && !v.contains("direction"))
+            diag_.error(joinKey(path, "direction"), "required for a directional light");
+        if (!point && v.contains("position"))
+            diag_.error(
+                joinKey(path, "position"),
+                "a directional light has no position (it is infinitely far); give only \"direction\"");
+        if (!point && v.contains("direction") && glm::length(l.direction) == 0.0f)
+            diag_.error(joinKey(path, "direction"), "must not be the zero vector");
+        return l;
+    }
+
+    const json& doc_;
+    Diagnostics& diag_;
+    LabSpec& spec_;
+    std::vector<PassDraft> drafts_;
+};
+
+// =============================================================================================
+// Step 4: validate
+
+bool isSharedPath(const std::string& p) { return p.rfind("shared/", 0) == 0; }
+
+class Validator {
+  public:
+    Validator(LabSpec& spec, std::vector<PassDraft>& drafts, Diagnostics& diag, bool check_disk)
+        : spec_(spec), drafts_(drafts), diag_(diag), check_disk_(check_disk) {}
+
+    void run() {
+        if (check_disk_) checkId();
+        collectTargets();
+        resolvePassTargets();
+        buildLoops();
+        checkInputs();
+        checkGraded();
+        checkCameras();
+        checkScenes();
+        checkGoals();
+        checkWork();
+        if (check_disk_) checkFiles();
     }
 
   private:
-    Diagnostics& diag_;
-};
-
-// What the read step saw that the typed spec cannot express (whether a field was written at
-// all), needed by the validate and complete steps.
-struct ReadNotes {
-    bool title_given = false;
-    bool student_files_given = false;
-    std::vector<std::optional<bool>> graded_given;  // per pass, as written
-    std::vector<bool> scene_file_given;             // per scene
-};
-
-// [width, height], each a whole number of pixels in [1, 4096].
-void readSize(FieldReader& r, const json& v, const std::string& path, int& width, int& height) {
-    if (!v.is_array() || v.size() != 2) {
-        r.typeError(path, "an array of 2 integers [width, height]", v);
-        return;
-    }
-    int w = 0, h = 0;
-    const Range range = Range::closed(1, kMaxPixels);
-    const bool ok_w = r.integer(v[0], joinIndex(path, 0), w, range);
-    const bool ok_h = r.integer(v[1], joinIndex(path, 1), h, range);
-    if (ok_w && ok_h) {
-        width = w;
-        height = h;
-    }
-}
-
-void readStringList(FieldReader& r, const json& v, const std::string& path, std::vector<std::string>& out) {
-    if (!r.array(v, path, "strings")) return;
-    out.assign(v.size(), std::string());
-    for (std::size_t i = 0; i < v.size(); ++i) r.string(v[i], joinIndex(path, i), out[i]);
-}
-
-bool readUniformValue(FieldReader& r, const json& v, const std::string& path, UniformValue& out) {
-    if (v.is_number()) {
-        float f = 0.0f;
-        if (!r.number(v, path, f)) return false;
-        out = f;
-        return true;
-    }
-    if (v.is_array()) {
-        const std::size_t n = v.size();
-        if (n != 2 && n != 3 && n != 4 && n != 9 && n != 16) {
-            r.error(path,
-                    "expected 2, 3 or 4 numbers (a vector) or 9 or 16 numbers (a column-major matrix), got " +
-                        describe(v));
-            return false;
-        }
-        float a[16] = {};
-        if (!r.numbers(v, path, n, a)) return false;
-        if (n == 2) out = glm::vec2(a[0], a[1]);
-        if (n == 3) out = glm::vec3(a[0], a[1], a[2]);
-        if (n == 4) out = glm::vec4(a[0], a[1], a[2], a[3]);
-        if (n == 9) {
-            glm::mat3 m(1.0f);
-            for (int c = 0; c < 3; ++c)
-                for (int row = 0; row < 3; ++row) m[c][row] = a[c * 3 + row];
-            out = m;
-        }
-        if (n == 16) {
-            glm::mat4 m(1.0f);
-            for (int c = 0; c < 4; ++c)
-                for (int row = 0; row < 4; ++row) m[c][row] = a[c * 4 + row];
-            out = m;
-        }
-        return true;
-    }
-    if (v.is_object()) {
-        if (!r.object(v, path, kUniformObjectKeys)) return false;
-        const json* as_int = FieldReader::find(v, "int");
-        const json* as_bool = FieldReader::find(v, "bool");
-        if (as_int && as_bool) {
-            r.error(path, "give either \"int\" or \"bool\", not both");
-            return false;
-        }
-        if (as_int) {
-            int i = 0;
-            if (!r.integer(*as_int, joinKey(path, "int"), i)) return false;
-            out = i;
-            return true;
-        }
-        if (as_bool) {
-            bool b = false;
-            if (!r.boolean(*as_bool, joinKey(path, "bool"), b)) return false;
-            out = b;
-            return true;
-        }
-        if (v.empty())
-            r.error(path, "expected {\"int\": <integer>} or {\"bool\": true|false}, got an empty object");
-        return false;  // unknown keys were reported by object()
-    }
-    r.typeError(path, "a number, an array of 2, 3, 4, 9 or 16 numbers, {\"int\": n} or {\"bool\": b}", v);
-    return false;
-}
-
-void readUniforms(FieldReader& r, const json& v, const std::string& path, UniformMap& out) {
-    if (!v.is_object()) {
-        r.typeError(path, "an object of uniform name: value", v);
-        return;
-    }
-    for (const auto& item : v.items()) {
-        const std::string at = joinKey(path, item.key());
-        const std::string problem = FieldReader::glslNameProblem(item.key());
-        if (!problem.empty()) {
-            r.error(at, problem);
-            continue;
-        }
-        UniformValue value;
-        if (readUniformValue(r, item.value(), at, value)) out[item.key()] = value;
-    }
-}
-
-void readProgram(FieldReader& r, const json& v, const std::string& path, ProgramSpec& out) {
-    if (!r.object(v, path, kProgramKeys)) return;
-    if (const json* f = r.require(v, path, "vertex")) r.string(*f, joinKey(path, "vertex"), out.vertex);
-    if (const json* f = r.require(v, path, "fragment")) r.string(*f, joinKey(path, "fragment"), out.fragment);
-}
-
-void readInput(FieldReader& r, const json& v, const std::string& path, PassInput& out) {
-    if (!r.object(v, path, kInputKeys)) return;
-    if (const json* f = r.require(v, path, "sampler")) r.glslName(*f, joinKey(path, "sampler"), out.sampler);
-    const json* pass = FieldReader::find(v, "pass");
-    const json* texture = FieldReader::find(v, "texture");
-    if (pass && texture) {
-        r.error(path, "give either \"pass\" or \"texture\", not both");
-    } else if (!pass && !texture) {
-        r.error(path,
-                "needs \"pass\" (the target of an earlier pass) or \"texture\" (an image file in the lab "
-                "folder)");
-    } else if (pass) {
-        r.name(*pass, joinKey(path, "pass"), out.from_pass);
-    } else {
-        r.string(*texture, joinKey(path, "texture"), out.texture_file);
-    }
-    r.optChoice(v, path, "filter", kFilters, out.filter);
-    r.optChoice(v, path, "wrap", kWraps, out.wrap);
-}
-
-void readTarget(FieldReader& r, const json& v, const std::string& path, TargetSpec& out) {
-    if (!r.object(v, path, kTargetKeys)) return;
-    if (const json* f = FieldReader::find(v, "name")) r.name(*f, joinKey(path, "name"), out.name);
-    r.optChoice(v, path, "format", kFormats, out.format);
-    r.optChoice(v, path, "filter", kFilters, out.filter);
-    r.optChoice(v, path, "wrap", kWraps, out.wrap);
-    const json* size = FieldReader::find(v, "size");
-    const json* scale = FieldReader::find(v, "scale");
-    if (size && scale) {
-        r.error(joinKey(path, "scale"),
-                "cannot be combined with \"size\": give the target either a size in pixels or a scale of the "
-                "lab resolution");
-    } else if (size) {
-        readSize(r, *size, joinKey(path, "size"), out.width, out.height);
-    } else if (scale) {
-        r.number(*scale, joinKey(path, "scale"), out.scale, Range::openClosed(0, 4));
-    }
-}
-
-void readState(FieldReader& r, const json& v, const std::string& path, RenderState& out) {
-    if (!r.object(v, path, kStateKeys)) return;
-    if (const json* f = FieldReader::find(v, "clear_color")) {
-        const std::string at = joinKey(path, "clear_color");
-        glm::vec4 c(0.0f);
-        if (f->is_null()) {
-            out.clear_color.reset();
-        } else if (!f->is_array()) {
-            r.typeError(at, "an array of 4 numbers (RGBA) or null", *f);
-        } else if (r.numbers(*f, at, 4, glm::value_ptr(c))) {
-            out.clear_color = c;
-        }
-    }
-    r.optBool(v, path, "clear_depth", out.clear_depth);
-    r.optBool(v, path, "depth_test", out.depth_test);
-    r.optBool(v, path, "depth_write", out.depth_write);
-    r.optChoice(v, path, "depth_func", kDepthFuncs, out.depth_func);
-    r.optChoice(v, path, "cull", kCullModes, out.cull);
-    r.optChoice(v, path, "polygon_mode", kPolygonModes, out.polygon_mode);
-    r.optNumber(v, path, "line_width", out.line_width, Range::openClosed(0, 16));
-    r.optChoice(v, path, "blend", kBlendModes, out.blend);
-}
-
-void readPass(FieldReader& r, const json& v, const std::string& path, PassSpec& out,
-              std::optional<bool>& graded) {
-    if (!r.object(v, path, kPassKeys)) return;
-    if (const json* f = r.require(v, path, "name")) r.name(*f, joinKey(path, "name"), out.name);
-    if (const json* f = r.require(v, path, "program"))
-        readProgram(r, *f, joinKey(path, "program"), out.program);
-    r.optChoice(v, path, "draw", kDrawKinds, out.draw);
-
-    const json* target = FieldReader::find(v, "target");
-    const json* draw_into = FieldReader::find(v, "draw_into");
-    out.target.name = out.name;  // the default; an explicit "name" below replaces it
-    if (target && draw_into) {
-        r.error(joinKey(path, "draw_into"),
-                "cannot be combined with \"target\": a pass either owns a target or draws into an earlier "
-                "pass's");
-    } else if (target) {
-        readTarget(r, *target, joinKey(path, "target"), out.target);
-    } else if (draw_into) {
-        r.name(*draw_into, joinKey(path, "draw_into"), out.draw_into);
+    void checkId() {
+        const std::string folder = fs::path(spec_.lab_dir).filename().string();
+        if (spec_.id != folder)
+            diag_.error("id", "is " + quoteJson(spec_.id) + " but the lab folder is " + quoteJson(folder) +
+                                  "; they must be the same");
     }
 
-    // A pass that draws over another pass's image must not wipe it: no clears unless asked for.
-    if (draw_into) {
-        out.state.clear_color.reset();
-        out.state.clear_depth = false;
-    }
-    if (const json* f = FieldReader::find(v, "state")) readState(r, *f, joinKey(path, "state"), out.state);
-
-    if (const json* f = FieldReader::find(v, "inputs")) {
-        const std::string at = joinKey(path, "inputs");
-        if (r.array(*f, at, "objects")) {
-            if (f->size() > kMaxInputs) {
-                r.error(at, "has " + std::to_string(f->size()) + " inputs; at most " +
-                                std::to_string(kMaxInputs) + " can be bound at once");
+    void collectTargets() {
+        std::map<std::string, std::string> where;  // target name -> path
+        for (const TargetSpec& t : spec_.targets) where[t.name] = t.path;
+        for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
+            if (!drafts_[i].own) continue;
+            TargetSpec& t = *drafts_[i].own;
+            const auto it = where.find(t.name);
+            if (it != where.end()) {
+                diag_.error(t.path,
+                            "declares target " + quoteJson(t.name) + ", which " + it->second +
+                                " already declares; to draw into it, write \"target\": " + quoteJson(t.name));
+                continue;
             }
-            out.inputs.resize(f->size());
-            for (std::size_t i = 0; i < f->size(); ++i)
-                readInput(r, (*f)[i], joinIndex(at, i), out.inputs[i]);
+            where[t.name] = t.path;
+            spec_.targets.push_back(t);
         }
-    }
-    if (const json* f = FieldReader::find(v, "uniforms"))
-        readUniforms(r, *f, joinKey(path, "uniforms"), out.uniforms);
-    if (const json* f = FieldReader::find(v, "graded")) {
-        bool b = false;
-        if (r.boolean(*f, joinKey(path, "graded"), b)) {
-            out.graded = b;
-            graded = b;
-        }
-    }
-}
-
-void readCamera(FieldReader& r, const json& v, const std::string& path, CameraOverride& out) {
-    if (!r.object(v, path, kCameraKeys)) return;
-    glm::vec3 value(0.0f);
-    if (const json* f = FieldReader::find(v, "position"); f && r.vec3(*f, joinKey(path, "position"), value))
-        out.position = value;
-    if (const json* f = FieldReader::find(v, "target"); f && r.vec3(*f, joinKey(path, "target"), value))
-        out.target = value;
-    if (const json* f = FieldReader::find(v, "up"); f && r.vec3(*f, joinKey(path, "up"), value)) {
-        if (value == glm::vec3(0.0f))
-            r.error(joinKey(path, "up"), "must not be the zero vector");
-        else
-            out.up = value;
-    }
-    float x = 0.0f;
-    if (const json* f = FieldReader::find(v, "fov_y_deg");
-        f && r.number(*f, joinKey(path, "fov_y_deg"), x, Range::open(0, 180)))
-        out.fov_y_deg = x;
-    if (const json* f = FieldReader::find(v, "near");
-        f && r.number(*f, joinKey(path, "near"), x, Range::above(0)))
-        out.z_near = x;
-    if (const json* f = FieldReader::find(v, "far");
-        f && r.number(*f, joinKey(path, "far"), x, Range::above(0)))
-        out.z_far = x;
-
-    // Relations inside the camera object; a camera that breaks them has no valid view matrix or
-    // projection, which would show up much later as a black or NaN image.
-    if (out.z_near && out.z_far && *out.z_far <= *out.z_near) {
-        r.error(joinKey(path, "far"), "must be greater than near (" + formatNumber(*out.z_near) + "), got " +
-                                          formatNumber(*out.z_far));
-    }
-    if (out.position && out.target) {
-        const glm::vec3 dir = *out.target - *out.position;
-        if (dir == glm::vec3(0.0f)) {
-            r.error(joinKey(path, "target"),
-                    "must differ from position: the camera would have no view direction");
-        } else if (out.up && glm::length(glm::cross(glm::normalize(dir), glm::normalize(*out.up))) < 1e-4f) {
-            r.error(joinKey(path, "up"),
-                    "is parallel to the view direction (target - position), so the camera's orientation is "
-                    "undefined");
-        }
-    }
-}
-
-void readLight(FieldReader& r, const json& v, const std::string& path, LightSpec& out) {
-    if (!r.object(v, path, kLightKeys)) return;
-    bool type_ok = false;
-    if (const json* f = r.require(v, path, "type"))
-        type_ok = r.choice(*f, joinKey(path, "type"), kLightTypes, out.type);
-    const json* position = FieldReader::find(v, "position");
-    const json* direction = FieldReader::find(v, "direction");
-    if (position) r.vec3(*position, joinKey(path, "position"), out.position);
-    if (direction) {
-        glm::vec3 d(0.0f);
-        if (r.vec3(*direction, joinKey(path, "direction"), d)) {
-            if (d == glm::vec3(0.0f))
-                r.error(joinKey(path, "direction"), "must not be the zero vector");
-            else
-                out.direction = d;
-        }
-    }
-    if (type_ok && out.type == "point") {
-        if (!position) r.error(joinKey(path, "position"), "required for a point light");
-        if (direction) {
-            r.error(joinKey(path, "direction"),
-                    "only applies to directional lights (a point light shines in all directions)");
-        }
-    } else if (type_ok) {
-        if (!direction) r.error(joinKey(path, "direction"), "required for a directional light");
-        if (position)
-            r.error(joinKey(path, "position"),
-                    "only applies to point lights (a directional light has no position)");
-    }
-    if (const json* f = FieldReader::find(v, "color"))
-        r.vec3(*f, joinKey(path, "color"), out.color, Range::atLeast(0));
-    r.optNumber(v, path, "intensity", out.intensity, Range::atLeast(0));
-}
-
-void readScene(FieldReader& r, const json& v, const std::string& path, SceneSpec& out, bool& file_given) {
-    if (!r.object(v, path, kSceneKeys)) return;
-    if (const json* f = r.require(v, path, "name")) r.name(*f, joinKey(path, "name"), out.name);
-    if (const json* f = FieldReader::find(v, "file")) {
-        file_given = true;
-        r.string(*f, joinKey(path, "file"), out.file);
-    }
-    if (const json* f = FieldReader::find(v, "camera"))
-        readCamera(r, *f, joinKey(path, "camera"), out.camera);
-    if (const json* f = FieldReader::find(v, "lights")) {
-        const std::string at = joinKey(path, "lights");
-        if (r.array(*f, at, "objects")) {
-            if (f->size() > kMaxLights) {
-                r.error(at, "has " + std::to_string(f->size()) + " lights; shaders receive at most " +
-                                std::to_string(kMaxLights) + " (SL_MAX_LIGHTS)");
+        for (TargetSpec& t : spec_.targets) {
+            if (t.width == 0) {
+                t.width = static_cast<int>(std::lround(spec_.width * t.scale));
+                t.height = static_cast<int>(std::lround(spec_.height * t.scale));
+                if (t.width < 1 || t.height < 1 || t.width > kMaxPixels || t.height > kMaxPixels)
+                    diag_.error(joinKey(t.path, "scale"),
+                                "gives a " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                                    " target; each side must be from 1 to 4096 pixels");
             }
-            std::vector<LightSpec> lights(f->size());
-            for (std::size_t i = 0; i < f->size(); ++i) readLight(r, (*f)[i], joinIndex(at, i), lights[i]);
-            out.lights = std::move(lights);
+            if (t.type == TargetType::Cube && t.width != t.height)
+                diag_.error(t.path, "a cube target must be square, got " + std::to_string(t.width) + "x" +
+                                        std::to_string(t.height));
+            if (t.type == TargetType::Cube && t.depth == DepthMode::Texture)
+                diag_.error(joinKey(t.path, "depth"), "a cube target's depth cannot be sampled");
         }
     }
-    if (const json* f = FieldReader::find(v, "uniforms"))
-        readUniforms(r, *f, joinKey(path, "uniforms"), out.uniforms);
-    r.optNumber(v, path, "time", out.time);
-}
 
-void readGrading(FieldReader& r, const json& v, const std::string& path, GradingSpec& out) {
-    if (!r.object(v, path, kGradingKeys)) return;
-    r.optNumber(v, path, "points", out.points, Range::above(0));
-    r.optNumber(v, path, "psnr_min_db", out.psnr_min_db, Range::closed(0, 100));
-    r.optNumber(v, path, "ssim_min", out.ssim_min, Range::closed(0, 1));
-    r.optNumber(v, path, "flip_mean_max", out.flip_mean_max, Range::closed(0, 1));
-    r.optNumber(v, path, "mismatch_max", out.mismatch_max, Range::closed(0, 1));
-    r.optNumber(v, path, "pixel_tolerance", out.pixel_tolerance, Range::closed(0, 1));
-}
-
-void readLab(FieldReader& r, const json& root, LabSpec& spec, ReadNotes& notes) {
-    if (!r.object(root, "", kTopKeys)) return;
-    if (const json* f = r.require(root, "", "schema")) {
-        int schema = 0;
-        if (r.integer(*f, "schema", schema)) {
-            if (schema != 1)
-                r.error("schema",
-                        "unsupported version " + std::to_string(schema) + "; this framework reads version 1");
-            else
-                spec.schema = schema;
-        }
-    }
-    if (const json* f = r.require(root, "", "id")) r.name(*f, "id", spec.id);
-    if (const json* f = FieldReader::find(root, "title")) {
-        notes.title_given = true;
-        r.string(*f, "title", spec.title);
-    }
-    if (const json* f = FieldReader::find(root, "resolution"))
-        readSize(r, *f, "resolution", spec.width, spec.height);
-    if (const json* f = FieldReader::find(root, "student_files")) {
-        notes.student_files_given = true;
-        readStringList(r, *f, "student_files", spec.student_files);
-        if (f->is_array() && f->empty()) {
-            r.error("student_files",
-                    "must list at least one file (leave the field out to use the program files)");
-        }
-    }
-    if (const json* f = r.require(root, "", "passes"); f && r.array(*f, "passes", "objects")) {
-        if (f->empty()) r.error("passes", "must list at least one pass");
-        spec.passes.resize(f->size());
-        notes.graded_given.resize(f->size());
-        for (std::size_t i = 0; i < f->size(); ++i) {
-            readPass(r, (*f)[i], passPath(i), spec.passes[i], notes.graded_given[i]);
-        }
-    }
-    if (const json* f = r.require(root, "", "scenes"); f && r.array(*f, "scenes", "objects")) {
-        if (f->empty()) r.error("scenes", "must list at least one scene (every lab renders once per scene)");
-        spec.scenes.resize(f->size());
-        notes.scene_file_given.assign(f->size(), false);
-        for (std::size_t i = 0; i < f->size(); ++i) {
-            bool file_given = false;
-            readScene(r, (*f)[i], scenePath(i), spec.scenes[i], file_given);
-            notes.scene_file_given[i] = file_given;
-        }
-    }
-    if (const json* f = FieldReader::find(root, "grading")) readGrading(r, *f, "grading", spec.grading);
-}
-
-// =============================================================================================
-// Step 3: validate: relations between fields, and the files on disk.
-// Fields left empty by the read step (missing or invalid, already reported) are skipped here,
-// so one mistake yields one message.
-
-// Where the lab lives, derived from the lab_dir argument.
-struct LabLocation {
-    std::string dir;          // absolute, normalised, no trailing separator
-    std::string root;         // its parent: the labs root
-    std::string folder_name;  // what the id must equal
-    bool exists = false;
-};
-
-LabLocation locateLab(const std::string& lab_dir) {
-    LabLocation loc;
-    if (lab_dir.empty()) return loc;
-    std::error_code ec;
-    fs::path p = fs::absolute(lab_dir, ec).lexically_normal();
-    if (ec) return loc;
-    if (!p.has_filename()) p = p.parent_path();  // "labs/01-phong/" normalises with a trailing '/'
-    loc.dir = p.string();
-    loc.root = p.parent_path().string();
-    loc.folder_name = p.filename().string();
-    loc.exists = fs::is_directory(p, ec);
-    return loc;
-}
-
-// Index of the pass named `name`, or -1.
-int findPass(const LabSpec& spec, const std::string& name) {
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        if (spec.passes[i].name == name) return static_cast<int>(i);
-    }
-    return -1;
-}
-
-// Index of the pass that owns the target named `name` (passes drawing into another own none).
-int findTargetOwner(const LabSpec& spec, const std::string& name) {
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        const PassSpec& p = spec.passes[i];
-        if (p.draw_into.empty() && p.target.name == name) return static_cast<int>(i);
-    }
-    return -1;
-}
-
-// Index of the pass whose target pass `i` renders into: `i` itself when it owns one, else the
-// owner reached by following draw_into; -1 when the chain is broken. Every step must go to an
-// earlier pass, so the walk always ends.
-int renderTargetOwner(const LabSpec& spec, std::size_t i) {
-    std::size_t at = i;
-    while (!spec.passes[at].draw_into.empty()) {
-        const int into = findPass(spec, spec.passes[at].draw_into);
-        if (into < 0 || static_cast<std::size_t>(into) >= at) return -1;
-        at = static_cast<std::size_t>(into);
-    }
-    return static_cast<int>(at);
-}
-
-std::string passLabel(const LabSpec& spec, int i) {
-    const std::string& name = spec.passes[static_cast<std::size_t>(i)].name;
-    return passPath(static_cast<std::size_t>(i)) + (name.empty() ? "" : " (" + quote(name) + ")");
-}
-
-void validateIdentity(const LabSpec& spec, const LabLocation& loc, Diagnostics& diag) {
-    if (spec.id.empty() || loc.folder_name.empty()) return;
-    if (spec.id != loc.folder_name) {
-        diag.error("id", quote(spec.id) + " does not match the lab folder's name " + quote(loc.folder_name));
-    }
-}
-
-void validateUniqueNames(const LabSpec& spec, Diagnostics& diag) {
-    std::map<std::string, std::size_t> passes, targets, scenes;
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        const std::string& name = spec.passes[i].name;
-        if (name.empty()) continue;
-        const auto [it, fresh] = passes.emplace(name, i);
-        if (!fresh)
-            diag.error(passPath(i) + ".name",
-                       "duplicate pass name " + quote(name) + ", already used by " + passPath(it->second));
-    }
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        const PassSpec& p = spec.passes[i];
-        if (!p.draw_into.empty() || p.target.name.empty()) continue;
-        const std::string at = passPath(i) + ".target.name";
-        const auto [it, fresh] = targets.emplace(p.target.name, i);
-        if (!fresh) {
-            diag.error(at, "target name " + quote(p.target.name) + " is already the target of " +
-                               passPath(it->second));
-            continue;
-        }
-        // Inputs name targets, and a target's name defaults to its pass's: a target named after
-        // a different pass would make {"pass": "x"} ambiguous to the reader.
-        const auto other = passes.find(p.target.name);
-        if (other != passes.end() && other->second != i) {
-            diag.error(at, "target name " + quote(p.target.name) + " is the name of another pass, " +
-                               passPath(other->second) + "; inputs would be ambiguous");
-        }
-    }
-    for (std::size_t i = 0; i < spec.scenes.size(); ++i) {
-        const std::string& name = spec.scenes[i].name;
-        if (name.empty()) continue;
-        const auto [it, fresh] = scenes.emplace(name, i);
-        if (!fresh)
-            diag.error(scenePath(i) + ".name",
-                       "duplicate scene name " + quote(name) + ", already used by " + scenePath(it->second));
-    }
-}
-
-// Why input `name` of pass `i` does not name an earlier target.
-std::string badInputReason(const LabSpec& spec, std::size_t i, const std::string& name) {
-    const int owner = findTargetOwner(spec, name);
-    if (owner == static_cast<int>(i)) {
-        return quote(name) + " is this pass's own target; a pass can only read the targets of earlier passes";
-    }
-    if (owner > static_cast<int>(i)) {
-        return quote(name) + " is the target of " + passLabel(spec, owner) +
-               ", which runs after this pass; inputs can only read the targets of earlier passes";
-    }
-    const int pass = findPass(spec, name);
-    if (pass >= 0 && !spec.passes[static_cast<std::size_t>(pass)].draw_into.empty()) {
-        const int writes_to = renderTargetOwner(spec, static_cast<std::size_t>(pass));
-        const std::string into =
-            writes_to >= 0
-                ? "the target " + quote(spec.passes[static_cast<std::size_t>(writes_to)].target.name)
-                : quote(spec.passes[static_cast<std::size_t>(pass)].draw_into);
-        return "pass " + quote(name) + " has no target of its own (it draws into " + into +
-               "); inputs name targets";
-    }
-    if (pass >= 0) {
-        return "pass " + quote(name) + " names its target " +
-               quote(spec.passes[static_cast<std::size_t>(pass)].target.name) +
-               "; inputs name targets, so use that";
-    }
-    std::vector<std::string> earlier;
-    for (std::size_t k = 0; k < i; ++k) {
-        if (spec.passes[k].draw_into.empty() && !spec.passes[k].target.name.empty())
-            earlier.push_back(spec.passes[k].target.name);
-    }
-    return "no pass has a target named " + quote(name) + didYouMean(name, earlier);
-}
-
-void validatePassReferences(const LabSpec& spec, Diagnostics& diag) {
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        const PassSpec& pass = spec.passes[i];
-        const std::string base = passPath(i);
-        for (std::size_t j = 0; j < pass.inputs.size(); ++j) {
-            const std::string& name = pass.inputs[j].from_pass;
-            if (name.empty()) continue;
-            const std::string at = base + ".inputs[" + std::to_string(j) + "].pass";
-            const int owner = findTargetOwner(spec, name);
-            if (owner < 0 || owner >= static_cast<int>(i)) {
-                diag.error(at, badInputReason(spec, i, name));
-            } else if (renderTargetOwner(spec, i) == owner) {
-                // Sampling the texture being rendered to is undefined behaviour in OpenGL.
-                diag.error(at,
-                           "reads target " + quote(name) +
-                               ", which this pass draws into; a pass cannot sample the image it renders to");
+    void resolvePassTargets() {
+        std::set<std::string> written;
+        for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
+            PassSpec& p = spec_.passes[i];
+            PassDraft& d = drafts_[i];
+            p.target = d.own ? d.own->name : d.target_ref;
+            const TargetSpec* t = spec_.findTarget(p.target);
+            if (!t) {
+                std::vector<std::string> names;
+                for (const TargetSpec& x : spec_.targets) names.push_back(x.name);
+                diag_.error(joinKey(p.path, "target"),
+                            "no target is called " + quoteJson(p.target) + didYouMean(p.target, names));
+                continue;
             }
-        }
-        if (pass.draw_into.empty()) continue;
-        const std::string at = base + ".draw_into";
-        const int into = findPass(spec, pass.draw_into);
-        if (into < 0) {
-            std::vector<std::string> earlier;
-            for (std::size_t k = 0; k < i; ++k) earlier.push_back(spec.passes[k].name);
-            diag.error(at, "no pass is named " + quote(pass.draw_into) + didYouMean(pass.draw_into, earlier));
-        } else if (into == static_cast<int>(i)) {
-            diag.error(at, "a pass cannot draw into itself");
-        } else if (into > static_cast<int>(i)) {
-            diag.error(at, passLabel(spec, into) +
-                               " runs after this pass; a pass can only draw into an earlier pass's target");
+            if (t->type == TargetType::Cube && p.draw == DrawKind::Scene)
+                diag_.error(joinKey(p.path, "draw"),
+                            "a scene draw cannot render into the cube target " + quoteJson(t->name) +
+                                "; use \"fullscreen\" or a draw without a mesh (one per face, u_cube_face)");
+            const bool first_writer = written.insert(p.target).second;
+            resolveState(p, d, *t, first_writer);
         }
     }
-}
 
-// Sampler names within a pass must be distinct and must not also be set as plain uniforms.
-void validateSamplers(const LabSpec& spec, Diagnostics& diag) {
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        const PassSpec& pass = spec.passes[i];
-        std::map<std::string, std::size_t> seen;
-        for (std::size_t j = 0; j < pass.inputs.size(); ++j) {
-            const std::string& sampler = pass.inputs[j].sampler;
-            if (sampler.empty()) continue;
-            const std::string at = passPath(i) + ".inputs[" + std::to_string(j) + "].sampler";
-            const auto [it, fresh] = seen.emplace(sampler, j);
-            if (!fresh) {
-                diag.error(at, "sampler " + quote(sampler) + " is already bound by inputs[" +
-                                   std::to_string(it->second) + "]");
-            } else if (pass.uniforms.count(sampler)) {
-                diag.error(at, "sampler " + quote(sampler) + " is also set in this pass's uniforms");
+    void resolveState(PassSpec& p, const PassDraft& d, const TargetSpec& t, bool first_writer) {
+        const bool fullscreen = p.draw == DrawKind::Fullscreen;
+        const bool has_depth = t.depth != DepthMode::None;
+        p.state.depth_test = d.depth_test.value_or(!fullscreen && has_depth);
+        p.state.depth_write = d.depth_write.value_or(!fullscreen && has_depth);
+        p.state.clear_depth = d.clear_depth.value_or(first_writer && has_depth);
+        if (!has_depth) {
+            const std::string state = joinKey(p.path, "state");
+            if (d.depth_test && *d.depth_test)
+                diag_.error(joinKey(state, "depth_test"),
+                            "target " + quoteJson(t.name) + " has no depth (\"depth\": \"none\")");
+            if (d.depth_write && *d.depth_write)
+                diag_.error(joinKey(state, "depth_write"),
+                            "target " + quoteJson(t.name) + " has no depth (\"depth\": \"none\")");
+        }
+        const glm::vec4 black(0.0f, 0.0f, 0.0f, 1.0f);
+        p.state.clear_colors.assign(t.attachments.size(),
+                                    first_writer ? std::optional<glm::vec4>(black) : std::nullopt);
+        if (!d.clear_color) return;
+        const json& c = *d.clear_color;
+        if (c.is_null()) {
+            p.state.clear_colors.assign(t.attachments.size(), std::nullopt);
+        } else if (c.is_array()) {
+            p.state.clear_colors.assign(t.attachments.size(), readVec4(c));
+        } else {
+            for (const auto& item : c.items()) {
+                const auto at = std::find(t.attachments.begin(), t.attachments.end(), item.key());
+                if (at == t.attachments.end()) {
+                    diag_.error(joinKey(joinKey(joinKey(p.path, "state"), "clear_color"), item.key()),
+                                "target " + quoteJson(t.name) + " has no attachment " +
+                                    quoteJson(item.key()) + didYouMean(item.key(), t.attachments));
+                    continue;
+                }
+                p.state.clear_colors[static_cast<std::size_t>(at - t.attachments.begin())] =
+                    item.value().is_null() ? std::nullopt : std::optional<glm::vec4>(readVec4(item.value()));
             }
         }
     }
-    for (std::size_t s = 0; s < spec.scenes.size(); ++s) {
-        for (const auto& entry : spec.scenes[s].uniforms) {
-            for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-                const auto& inputs = spec.passes[i].inputs;
-                const bool is_sampler = std::any_of(inputs.begin(), inputs.end(), [&](const PassInput& in) {
-                    return in.sampler == entry.first;
-                });
-                if (is_sampler) {
-                    diag.error(joinKey(scenePath(s) + ".uniforms", entry.first),
-                               "is a sampler of " + passLabel(spec, static_cast<int>(i)) +
-                                   " and cannot be set as a value");
+
+    int passIndex(const std::string& name) const {
+        for (std::size_t i = 0; i < spec_.passes.size(); ++i)
+            if (spec_.passes[i].name == name) return static_cast<int>(i);
+        return -1;
+    }
+
+    void buildLoops() {
+        std::set<std::string> names;
+        for (const PassSpec& p : spec_.passes) {
+            if (p.name.empty()) continue;
+            if (!names.insert(p.name).second)
+                diag_.error(joinKey(p.path, "name"), "pass " + quoteJson(p.name) + " is listed twice");
+        }
+        for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
+            const PassDraft& d = drafts_[i];
+            if (!d.repeat_count) continue;
+            LoopSpec loop;
+            loop.last = i;
+            loop.first = i;
+            loop.count = *d.repeat_count;
+            loop.declared_by = spec_.passes[i].name;
+            if (!d.repeat_from.empty()) {
+                const int j = passIndex(d.repeat_from);
+                if (j < 0 || static_cast<std::size_t>(j) > i) {
+                    std::vector<std::string> earlier;
+                    for (std::size_t k = 0; k <= i; ++k) earlier.push_back(spec_.passes[k].name);
+                    diag_.error(
+                        joinKey(joinKey(spec_.passes[i].path, "repeat"), "from"),
+                        j < 0 ? "no pass is called " + quoteJson(d.repeat_from) +
+                                    didYouMean(d.repeat_from, earlier)
+                              : quoteJson(d.repeat_from) +
+                                    " comes after this pass; \"from\" names the first pass of the group, "
+                                    "which ends at this pass");
+                    continue;
+                }
+                loop.first = static_cast<std::size_t>(j);
+            }
+            bool overlap = false;
+            for (std::size_t k = loop.first; k <= loop.last; ++k) {
+                if (spec_.passes[k].loop >= 0) {
+                    diag_.error(
+                        joinKey(spec_.passes[i].path, "repeat"),
+                        "overlaps the repeat group of pass " +
+                            quoteJson(
+                                spec_.loops[static_cast<std::size_t>(spec_.passes[k].loop)].declared_by) +
+                            "; repeat groups cannot overlap or nest");
+                    overlap = true;
                     break;
                 }
             }
+            if (overlap) continue;
+            for (std::size_t k = loop.first; k <= loop.last; ++k)
+                spec_.passes[k].loop = static_cast<int>(spec_.loops.size());
+            spec_.loops.push_back(loop);
         }
     }
-}
 
-// Scaled targets must come out between 1 and 4096 pixels per side at the lab resolution.
-void validateTargetSizes(const LabSpec& spec, Diagnostics& diag) {
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        const TargetSpec& t = spec.passes[i].target;
-        if (!spec.passes[i].draw_into.empty() || t.width > 0) continue;
-        const double w = static_cast<double>(t.scale) * spec.width;
-        const double h = static_cast<double>(t.scale) * spec.height;
-        if (w < 1.0 || h < 1.0 || w > kMaxPixels || h > kMaxPixels) {
-            diag.error(passPath(i) + ".target.scale",
-                       formatNumber(t.scale) + " of the lab resolution " + std::to_string(spec.width) + "x" +
-                           std::to_string(spec.height) + " gives " + formatNumber(w) + "x" + formatNumber(h) +
-                           " pixels; each side must be between 1 and " + std::to_string(kMaxPixels));
+    void checkInputs() {
+        for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
+            PassSpec& p = spec_.passes[i];
+            std::set<std::string> uniform_names;
+            for (const UniformSetting& u : p.uniforms) uniform_names.insert(u.name);
+            for (const PassInput& in : p.inputs) {
+                if (uniform_names.count(in.sampler))
+                    diag_.error(in.path,
+                                quoteJson(in.sampler) +
+                                    " is both a sampler input and a uniform value of this pass; a sampler "
+                                    "gets a texture, not a value");
+                if (in.source != InputSource::Target) continue;
+                const TargetSpec* t = spec_.findTarget(in.target);
+                if (!t) {
+                    std::vector<std::string> names;
+                    for (const TargetSpec& x : spec_.targets) names.push_back(x.name);
+                    diag_.error(in.path,
+                                "no target is called " + quoteJson(in.target) + didYouMean(in.target, names));
+                    continue;
+                }
+                if (in.attachment == "depth") {
+                    if (t->depth != DepthMode::Texture)
+                        diag_.error(in.path,
+                                    "reads the depth of target " + quoteJson(t->name) +
+                                        ", which cannot be sampled: give the target \"depth\": \"texture\"");
+                } else if (!in.attachment.empty() && std::find(t->attachments.begin(), t->attachments.end(),
+                                                               in.attachment) == t->attachments.end()) {
+                    diag_.error(in.path, "target " + quoteJson(t->name) + " has no attachment " +
+                                             quoteJson(in.attachment) +
+                                             didYouMean(in.attachment, t->attachments));
+                }
+                checkReadOrder(i, in);
+            }
         }
     }
-}
 
-void validateScenes(const LabSpec& spec, const ReadNotes& notes, Diagnostics& diag) {
-    int scene_pass = -1;
-    for (std::size_t i = 0; i < spec.passes.size() && scene_pass < 0; ++i) {
-        if (spec.passes[i].draw == DrawKind::Scene) scene_pass = static_cast<int>(i);
+    // A pass reads what earlier passes wrote. Inside a repeat group a pass may also read what
+    // the group writes later (or itself): the previous iteration's result, feedback.
+    void checkReadOrder(std::size_t i, const PassInput& in) {
+        const PassSpec& p = spec_.passes[i];
+        std::vector<std::size_t> writers;
+        for (std::size_t j = 0; j < spec_.passes.size(); ++j)
+            if (spec_.passes[j].target == in.target) writers.push_back(j);
+        if (writers.empty()) {
+            diag_.error(in.path, "reads target " + quoteJson(in.target) + ", which no pass draws into");
+            return;
+        }
+        if (writers.front() < i) return;
+        if (p.loop >= 0) {
+            const LoopSpec& l = spec_.loops[static_cast<std::size_t>(p.loop)];
+            for (std::size_t j : writers)
+                if (j >= l.first && j <= l.last) return;
+        }
+        const std::size_t j = writers.front();
+        if (j == i)
+            diag_.error(in.path, "reads target " + quoteJson(in.target) +
+                                     ", which this pass draws into; only a repeated pass can read its own "
+                                     "target (it then reads the previous iteration's result)");
+        else
+            diag_.error(in.path,
+                        "reads target " + quoteJson(in.target) + ", which is first drawn by " + passPath(j) +
+                            " (" + quoteJson(spec_.passes[j].name) +
+                            ") after this pass: a cycle. A pass reads what earlier passes drew, unless "
+                            "both are in one repeat group");
     }
-    if (scene_pass < 0) return;  // fullscreen-only labs may list scenes without files
-    for (std::size_t s = 0; s < spec.scenes.size(); ++s) {
-        if (s < notes.scene_file_given.size() && !notes.scene_file_given[s]) {
-            diag.error(scenePath(s) + ".file",
-                       "required field is missing: " + passLabel(spec, scene_pass) + " draws the scene");
+
+    void checkGraded() {
+        for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
+            PassSpec& p = spec_.passes[i];
+            const PassDraft& d = drafts_[i];
+            const TargetSpec* t = spec_.findTarget(p.target);
+            if (!t) continue;
+            const bool last = i + 1 == spec_.passes.size();
+            if (last && d.graded_flag && !*d.graded_flag)
+                diag_.error(joinKey(p.path, "graded"),
+                            "the last pass is the lab's result and is always graded; leave \"graded\" out");
+            if (!d.graded_list.empty()) {
+                for (const std::string& a : d.graded_list) {
+                    if (a == "depth") {
+                        if (t->depth == DepthMode::None)
+                            diag_.error(joinKey(p.path, "graded"),
+                                        "target " + quoteJson(t->name) + " has no depth to grade");
+                    } else if (std::find(t->attachments.begin(), t->attachments.end(), a) ==
+                               t->attachments.end()) {
+                        diag_.error(joinKey(p.path, "graded"), "target " + quoteJson(t->name) +
+                                                                   " has no attachment " + quoteJson(a) +
+                                                                   didYouMean(a, t->attachments));
+                    }
+                }
+                p.graded = d.graded_list;
+            } else if (d.graded_flag.value_or(last)) {
+                p.graded = t->attachments;
+            }
+            if (t->type == TargetType::Cube && !p.graded.empty() &&
+                std::find(p.graded.begin(), p.graded.end(), "depth") != p.graded.end())
+                diag_.error(joinKey(p.path, "graded"), "a cube target's depth cannot be graded");
+            p.compare = d.compare.value_or(isFloatFormat(t->format) && !last ? CompareMode::Hdr
+                                                                             : CompareMode::Display);
         }
     }
-}
 
-// Empty when `rel` is an acceptable relative path, else the problem. resolveInside() refuses
-// escapes too, but naming ".." here gives a clearer message than "resolves outside".
-std::string relativePathProblem(const std::string& rel, const std::string& relative_to) {
-    const fs::path p(rel);
-    if (p.is_absolute()) return quote(rel) + " is an absolute path; give a path relative to " + relative_to;
-    for (const fs::path& part : p) {
-        if (part == "..") return quote(rel) + " must not contain \"..\"; give a path inside " + relative_to;
+    void checkCameras() {
+        auto check = [this](const CameraOverride& c, const std::string& path) {
+            const std::string cam = joinKey(path, "camera");
+            if (c.up && glm::length(*c.up) == 0.0f)
+                diag_.error(joinKey(cam, "up"), "must not be the zero vector");
+            if (c.z_near && c.z_far && *c.z_far <= *c.z_near)
+                diag_.error(joinKey(cam, "far"), "must be greater than near (" + formatNumber(*c.z_near) +
+                                                     "), got " + formatNumber(*c.z_far));
+            if (c.position && c.target) {
+                const glm::vec3 forward = *c.target - *c.position;
+                if (glm::length(forward) == 0.0f)
+                    diag_.error(joinKey(cam, "target"), "must differ from position");
+                else if (c.up && glm::length(*c.up) > 0.0f &&
+                         glm::length(glm::cross(glm::normalize(forward), glm::normalize(*c.up))) < 1e-6f)
+                    diag_.error(joinKey(cam, "up"),
+                                "must not be parallel to the viewing direction (target - position)");
+            }
+            if (c.height && c.projection != Projection::Orthographic)
+                diag_.error(joinKey(cam, "height"), "applies to \"projection\": \"orthographic\" only");
+            if (c.fov_y_deg && c.projection == Projection::Orthographic)
+                diag_.error(joinKey(cam, "fov_y_deg"),
+                            "an orthographic camera has no field of view; give \"height\"");
+            if (c.light && (c.position || c.target))
+                diag_.error(
+                    cam, "\"light\" places the camera at the light; leave \"position\" and \"target\" out");
+        };
+        for (const PassSpec& p : spec_.passes) check(p.camera, p.path);
+        std::set<std::string> seen;
+        for (const SceneSpec& s : spec_.scenes)
+            if (seen.insert(s.path).second) check(s.camera, s.path.substr(0, s.path.find(".times")));
     }
-    return "";
-}
 
-// Checks that `rel` names an existing regular file inside `root`.
-void checkFile(const std::string& root, const std::string& rel, const std::string& path,
-               const std::string& relative_to, Diagnostics& diag) {
-    if (rel.empty()) return;
-    const std::string problem = relativePathProblem(rel, relative_to);
-    if (!problem.empty()) {
-        diag.error(path, problem);
-        return;
-    }
-    const PathResult found = resolveInside(root, rel);
-    if (!found.ok) diag.error(path, found.error);
-}
-
-void validateFiles(const LabSpec& spec, const ReadNotes& notes, const LabLocation& loc, Diagnostics& diag) {
-    if (!loc.exists) return;  // reported once by the caller
-    const std::string lab_folder = "the lab folder";
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        const PassSpec& pass = spec.passes[i];
-        const std::string base = passPath(i);
-        checkFile(loc.dir, pass.program.vertex, base + ".program.vertex", lab_folder, diag);
-        checkFile(loc.dir, pass.program.fragment, base + ".program.fragment", lab_folder, diag);
-        for (std::size_t j = 0; j < pass.inputs.size(); ++j) {
-            checkFile(loc.dir, pass.inputs[j].texture_file,
-                      base + ".inputs[" + std::to_string(j) + "].texture", lab_folder, diag);
+    void checkScenes() {
+        std::map<std::string, std::string> names;
+        const bool draws_scene = std::any_of(spec_.passes.begin(), spec_.passes.end(),
+                                             [](const PassSpec& p) { return p.draw == DrawKind::Scene; });
+        std::set<std::string> checked;
+        for (SceneSpec& s : spec_.scenes) {
+            const std::string base = s.path.substr(0, s.path.find(".times"));
+            const auto [it, fresh] = names.emplace(s.name, base);
+            if (!fresh)
+                diag_.error(joinKey(base, "name"),
+                            "scene " + quoteJson(s.name) + " is also the name of " + it->second);
+            if (!checked.insert(base).second) continue;
+            if (draws_scene && s.file.empty())
+                diag_.error(joinKey(base, "file"),
+                            "is required: a pass draws the scene (\"draw\": \"scene\")");
+            for (const auto& [pass, count] : s.repeats) {
+                const int j = passIndex(pass);
+                if (j < 0 || !drafts_[static_cast<std::size_t>(j)].repeat_count) {
+                    std::vector<std::string> repeated;
+                    for (const LoopSpec& l : spec_.loops) repeated.push_back(l.declared_by);
+                    diag_.error(joinKey(joinKey(base, "repeats"), pass),
+                                j < 0 ? "no pass is called " + quoteJson(pass) + didYouMean(pass, repeated)
+                                      : "pass " + quoteJson(pass) + " has no \"repeat\" to change");
+                }
+                (void)count;
+            }
+            for (const UniformSetting& u : s.uniforms)
+                for (const PassSpec& p : spec_.passes)
+                    for (const PassInput& in : p.inputs)
+                        if (in.sampler == u.name)
+                            diag_.error(u.path, quoteJson(u.name) + " is a sampler input of " + p.path +
+                                                    "; a sampler gets a texture, not a value");
         }
     }
-    if (notes.student_files_given) {
-        std::map<std::string, std::size_t> seen;
-        for (std::size_t i = 0; i < spec.student_files.size(); ++i) {
-            const std::string& file = spec.student_files[i];
-            if (file.empty()) continue;
-            const std::string at = joinIndex("student_files", i);
-            const auto [it, fresh] = seen.emplace(fs::path(file).lexically_normal().string(), i);
-            if (!fresh) {
-                diag.error(at, quote(file) + " is already listed as student_files[" +
-                                   std::to_string(it->second) + "]");
+
+    void checkGoals() {
+        std::vector<std::string> graded;
+        for (const PassSpec& p : spec_.passes)
+            if (!p.graded.empty()) graded.push_back(p.name);
+        if (spec_.goals.empty()) {
+            // One goal per scene, sharing the lab's points.
+            const float share =
+                spec_.grading.points / static_cast<float>(std::max<std::size_t>(1, spec_.scenes.size()));
+            for (const SceneSpec& s : spec_.scenes) {
+                GoalSpec g;
+                g.id = s.name;
+                g.title = "scene " + s.name;
+                g.points = share;
+                g.scenes = {s.name};
+                g.passes = graded;
+                g.implicit = true;
+                spec_.goals.push_back(std::move(g));
+            }
+            return;
+        }
+        std::set<std::string> ids, covered;
+        float total = 0.0f;
+        for (std::size_t i = 0; i < spec_.goals.size(); ++i) {
+            GoalSpec& g = spec_.goals[i];
+            const std::string path = joinIndex("goals", i);
+            total += g.points;
+            if (!ids.insert(g.id).second)
+                diag_.error(joinKey(path, "id"), "goal " + quoteJson(g.id) + " is listed twice");
+            std::vector<std::string> scenes;
+            if (g.scenes.empty()) {
+                for (const SceneSpec& s : spec_.scenes) scenes.push_back(s.name);
+            } else {
+                for (std::size_t k = 0; k < g.scenes.size(); ++k) {
+                    const std::string& name = g.scenes[k];
+                    bool found = false;
+                    for (const SceneSpec& s : spec_.scenes) {
+                        if (s.name == name || s.base_name == name) {
+                            scenes.push_back(s.name);
+                            found = true;
+                        }
+                    }
+                    if (!found) {
+                        std::vector<std::string> names;
+                        for (const SceneSpec& s : spec_.scenes) names.push_back(s.base_name);
+                        diag_.error(joinIndex(joinKey(path, "scenes"), k),
+                                    "no scene is called " + quoteJson(name) + didYouMean(name, names));
+                    }
+                }
+            }
+            g.scenes = scenes;
+            if (g.passes.empty()) {
+                g.passes = graded;
+            } else {
+                for (std::size_t k = 0; k < g.passes.size(); ++k) {
+                    const std::string& name = g.passes[k];
+                    if (std::find(graded.begin(), graded.end(), name) == graded.end()) {
+                        std::vector<std::string> all;
+                        for (const PassSpec& p : spec_.passes) all.push_back(p.name);
+                        diag_.error(
+                            joinIndex(joinKey(path, "passes"), k),
+                            passIndex(name) < 0
+                                ? "no pass is called " + quoteJson(name) + didYouMean(name, all)
+                                : "pass " + quoteJson(name) +
+                                      " is not graded; mark it \"graded\": true to grade a goal on it");
+                    }
+                }
+            }
+            covered.insert(g.scenes.begin(), g.scenes.end());
+        }
+        spec_.grading.points = total;
+        std::set<std::string> reported;
+        for (const SceneSpec& s : spec_.scenes) {
+            const std::string base = s.path.substr(0, s.path.find(".times"));
+            if (!covered.count(s.name) && reported.insert(base).second)
+                diag_.error(base, "scene " + quoteJson(s.base_name) +
+                                      " is in no goal's \"scenes\": every graded scene must test some goal");
+        }
+    }
+
+    void checkWork() {
+        long total = 0;
+        for (const SceneSpec& s : spec_.scenes) {
+            long runs = 0;
+            for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
+                const PassSpec& p = spec_.passes[i];
+                long n = 1;
+                if (p.loop >= 0) {
+                    const LoopSpec& l = spec_.loops[static_cast<std::size_t>(p.loop)];
+                    const auto it = s.repeats.find(l.declared_by);
+                    n = it != s.repeats.end() ? it->second : l.count;
+                }
+                const TargetSpec* t = spec_.findTarget(p.target);
+                if (t && t->type == TargetType::Cube) n *= 6;
+                runs += n;
+            }
+            if (runs > kMaxPassRunsPerScene)
+                diag_.error(s.path, "runs passes " + std::to_string(runs) + " times for one scene; at most " +
+                                        std::to_string(kMaxPassRunsPerScene) +
+                                        " are allowed (lower \"repeat\")");
+            total += runs;
+        }
+        if (total <= kMaxPassRunsPerLab) return;
+        diag_.error("scenes", "together run passes " + std::to_string(total) + " times; at most " +
+                                  std::to_string(kMaxPassRunsPerLab) + " are allowed");
+    }
+
+    // A file named in lab.json: a regular file inside the lab folder, or inside labs/shared for
+    // shared/... paths.
+    void checkFile(const std::string& path, const std::string& file) {
+        const bool shared = isSharedPath(file);
+        const PathResult r = resolveInside(shared ? spec_.labs_root : spec_.lab_dir, file);
+        if (!r.ok) diag_.error(path, r.error);
+    }
+
+    void checkFiles() {
+        std::error_code ec;
+        if (fs::exists(fs::path(spec_.lab_dir) / "shared", ec))
+            diag_.error(
+                "",
+                "the lab folder has a sub-folder \"shared\", which would hide the course's shared folder "
+                "(labs/shared/) from its paths; rename it");
+        for (const PassSpec& p : spec_.passes) {
+            checkFile(joinKey(joinKey(p.path, "program"), "vertex"), p.program.vertex);
+            checkFile(joinKey(joinKey(p.path, "program"), "fragment"), p.program.fragment);
+            for (const PassInput& in : p.inputs) {
+                if (in.source == InputSource::File) checkFile(joinKey(in.path, "texture"), in.file);
+                for (std::size_t k = 0; k < in.cube_files.size(); ++k)
+                    checkFile(joinIndex(joinKey(in.path, "cube"), k), in.cube_files[k]);
+            }
+        }
+        for (std::size_t k = 0; k < spec_.student_files.size(); ++k) {
+            const std::string& f = spec_.student_files[k];
+            const std::string path = joinIndex("student_files", k);
+            if (isSharedPath(f)) {
+                diag_.error(path, "a shared file cannot be a student file (every lab would share one copy)");
                 continue;
             }
-            checkFile(loc.dir, file, at, lab_folder, diag);
+            checkFile(path, f);
+        }
+        std::set<std::string> checked;
+        for (const SceneSpec& s : spec_.scenes) {
+            if (s.file.empty() || !checked.insert(s.path.substr(0, s.path.find(".times"))).second) continue;
+            const PathResult r = resolveInside(spec_.labs_root, s.file);
+            if (!r.ok) diag_.error(joinKey(s.path.substr(0, s.path.find(".times")), "file"), r.error);
         }
     }
-    for (std::size_t s = 0; s < spec.scenes.size(); ++s) {
-        const std::string& file = spec.scenes[s].file;
-        if (file.empty()) continue;
-        const std::string at = scenePath(s) + ".file";
-        const std::string ext = lowercase(fs::path(file).extension().string());
-        if (ext != ".gltf" && ext != ".glb") {
-            diag.error(at, quote(file) + " is not a glTF file (expected a .gltf or .glb extension)");
-            continue;
-        }
-        checkFile(loc.root, file, at, "the labs root", diag);
-    }
-}
 
-void validateGradedFlag(const LabSpec& spec, const ReadNotes& notes, Diagnostics& diag) {
-    if (spec.passes.empty() || notes.graded_given.size() != spec.passes.size()) return;
-    const std::optional<bool>& last = notes.graded_given.back();
-    if (last && !*last) {
-        diag.error(
-            passPath(spec.passes.size() - 1) + ".graded",
-            "the last pass is always graded (its image is the lab's result); remove \"graded\": false");
-    }
-}
+    LabSpec& spec_;
+    std::vector<PassDraft>& drafts_;
+    Diagnostics& diag_;
+    bool check_disk_;
+};
 
 // =============================================================================================
-// Step 4: complete: defaults that depend on other fields
+// Step 5: complete
 
-void completeSpec(LabSpec& spec, const ReadNotes& notes) {
-    if (!notes.title_given) spec.title = spec.id;
-    if (!notes.student_files_given) {
-        // The files a submission provides are, unless listed, exactly the shaders the passes use.
-        for (const PassSpec& pass : spec.passes) {
-            for (const std::string* file : {&pass.program.vertex, &pass.program.fragment}) {
-                if (file->empty()) continue;
-                if (std::find(spec.student_files.begin(), spec.student_files.end(), *file) ==
+void complete(LabSpec& spec) {
+    if (spec.title.empty()) spec.title = spec.id;
+    if (spec.student_files.empty()) {
+        for (const PassSpec& p : spec.passes) {
+            for (const std::string* f : {&p.program.vertex, &p.program.fragment}) {
+                if (isSharedPath(*f)) continue;
+                if (std::find(spec.student_files.begin(), spec.student_files.end(), *f) ==
                     spec.student_files.end())
-                    spec.student_files.push_back(*file);
+                    spec.student_files.push_back(*f);
             }
         }
     }
-    if (!spec.passes.empty()) spec.passes.back().graded = true;
-    // A pass drawing into another carries a copy of the description of the target it ends up
-    // in (following chains), so its size and format are known without following references.
-    for (std::size_t i = 0; i < spec.passes.size(); ++i) {
-        PassSpec& pass = spec.passes[i];
-        if (pass.draw_into.empty()) continue;
-        const int owner = renderTargetOwner(spec, i);
-        if (owner >= 0 && owner != static_cast<int>(i))
-            pass.target = spec.passes[static_cast<std::size_t>(owner)].target;
-    }
 }
 
-}  // namespace
-
-LabSpecResult parseLabSpecText(const std::string& json_text, const std::string& origin,
-                               const std::string& lab_dir) {
+LabSpecResult parse(const std::string& text, const std::string& origin, const std::string& lab_dir,
+                    bool check_disk) {
     LabSpecResult result;
     Diagnostics diag(origin);
-    const LabLocation loc = locateLab(lab_dir);
-    result.spec.lab_dir = loc.dir;
-    result.spec.labs_root = loc.root;
-    if (lab_dir.empty()) {
-        diag.error("", "no lab folder given, so file references cannot be checked");
-    } else if (!loc.exists) {
-        diag.error("", "the lab folder " + lab_dir + " does not exist");
+    LabSpec& spec = result.spec;
+    std::error_code ec;
+    fs::path dir = fs::absolute(lab_dir, ec).lexically_normal();
+    if (dir.has_filename() == false) dir = dir.parent_path();
+    spec.lab_dir = dir.string();
+    spec.labs_root = dir.parent_path().string();
+
+    json doc;
+    if (!loadJson(text, diag, doc)) {
+        result.errors = diag.take();
+        return result;
     }
-
-    json root;
-    if (loadJson(json_text, diag, root)) {
-        FieldReader reader(diag);
-        ReadNotes notes;
-        readLab(reader, root, result.spec, notes);
-
-        validateIdentity(result.spec, loc, diag);
-        validateUniqueNames(result.spec, diag);
-        validatePassReferences(result.spec, diag);
-        validateSamplers(result.spec, diag);
-        validateTargetSizes(result.spec, diag);
-        validateScenes(result.spec, notes, diag);
-        validateFiles(result.spec, notes, loc, diag);
-        validateGradedFlag(result.spec, notes, diag);
-
-        completeSpec(result.spec, notes);
+    for (const SchemaProblem& p : labSchemaChecker().check(doc)) diag.error(p.path, p.problem);
+    if (diag.any()) {
+        result.errors = diag.take();
+        return result;
     }
+    Reader reader(doc, diag, spec);
+    reader.run();
+    std::vector<PassDraft>& drafts = reader.drafts();
+    Validator validator(spec, drafts, diag, check_disk);
+    if (!diag.any()) validator.run();
+    if (!diag.any()) complete(spec);
     result.errors = diag.take();
     result.ok = result.errors.empty();
     return result;
 }
 
+}  // namespace
+
+bool isFloatFormat(TargetFormat f) { return f == TargetFormat::RGBA16F || f == TargetFormat::RGBA32F; }
+
+bool CameraOverride::any() const {
+    return position || target || up || fov_y_deg || z_near || z_far || projection || height || light;
+}
+
+const TargetSpec* LabSpec::findTarget(const std::string& name) const {
+    for (const TargetSpec& t : targets)
+        if (t.name == name) return &t;
+    return nullptr;
+}
+
+const PassSpec* LabSpec::findPass(const std::string& name) const {
+    for (const PassSpec& p : passes)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+const std::string& labSchemaText() {
+    static const std::string text = kLabSchemaJson;
+    return text;
+}
+
+std::string sharedFolder(const std::string& labs_root) { return (fs::path(labs_root) / "shared").string(); }
+
+std::string labFilePath(const LabSpec& spec, const std::string& path) {
+    return (fs::path(isSharedPath(path) ? spec.labs_root : spec.lab_dir) / path).string();
+}
+
 LabSpecResult parseLabSpec(const std::string& lab_dir) {
-    const std::string origin = (fs::path(lab_dir) / "lab.json").string();
+    const fs::path file = fs::path(lab_dir) / "lab.json";
+    const std::string origin = file.string();
     std::error_code ec;
-    std::string problem;
     if (!fs::is_directory(lab_dir, ec)) {
-        problem = origin + ": file not found (the lab folder " + lab_dir + " does not exist)";
-    } else {
-        const FileText file = readFile(origin, kMaxLabJsonBytes);
-        if (file.ok) return parseLabSpecText(file.text, origin, lab_dir);
-        problem = file.error;  // already "<path>: <problem>"
+        LabSpecResult r;
+        r.errors.push_back(origin + ": the lab folder " + lab_dir + " does not exist");
+        return r;
     }
-    LabSpecResult result;
-    const LabLocation loc = locateLab(lab_dir);
-    result.spec.lab_dir = loc.dir;
-    result.spec.labs_root = loc.root;
-    result.errors.push_back(problem);
-    return result;
+    const FileText t = readFile(file.string(), kMaxLabJsonBytes);
+    if (!t.ok) {
+        LabSpecResult r;
+        r.errors.push_back(origin + ": " + (fs::exists(file, ec) ? t.error : "file not found"));
+        return r;
+    }
+    return parse(t.text, origin, lab_dir, true);
+}
+
+LabSpecResult parseLabSpecText(const std::string& json_text, const std::string& origin,
+                               const std::string& lab_dir) {
+    return parse(json_text, origin, lab_dir, true);
 }
 
 }  // namespace shaderlab

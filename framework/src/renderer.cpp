@@ -1,4 +1,11 @@
 // Executes a lab's passes on the current context; see renderer.h.
+//
+// LabRunner owns every GL object of one lab: programs (one per shader pair and attachment
+// layout), targets (two copies of those a pass reads while drawing into them, swapped after each
+// run), input textures (made per sampler type on first use), sampler objects, meshes. Each pass
+// run starts from a known state: the program's uniforms back at their linked defaults, every
+// sampler of the program on its own texture unit, every other unit empty, the pass's render
+// state applied in full. Nothing here knows a lab by name.
 #include "shaderlab/renderer.h"
 
 #include <algorithm>
@@ -7,15 +14,18 @@
 #include <filesystem>
 #include <functional>
 #include <glm/gtc/matrix_inverse.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
 #include <set>
-#include <variant>
 
+#include "gl_types.h"
+#include "input_textures.h"
+#include "json_messages.h"
+#include "shaderlab/camera.h"
 #include "shaderlab/gl.h"
 #include "shaderlab/gltf_loader.h"
 #include "shaderlab/paths.h"
+#include "uniform_values.h"
 
 namespace shaderlab {
 
@@ -23,6 +33,7 @@ namespace {
 
 constexpr std::size_t kMaxShaderBytes = 256 * 1024;
 constexpr int kMaxLights = 4;
+constexpr int kMaxTextureUnits = 16;
 
 struct GpuMesh {
     GLuint vao = 0, vbo[3] = {0, 0, 0}, ebo = 0;
@@ -76,20 +87,112 @@ std::unique_ptr<GpuMesh> fullscreenTriangle() {
     return uploadMesh(m);
 }
 
-struct Target {
-    GLuint fbo = 0, color = 0, depth = 0;
-    int width = 0, height = 0;
-    Target() = default;
-    Target(const Target&) = delete;
-    Target& operator=(const Target&) = delete;
-    ~Target() {
-        if (fbo) glDeleteFramebuffers(1, &fbo);
-        if (color) glDeleteTextures(1, &color);
-        if (depth) glDeleteRenderbuffers(1, &depth);
+GLenum internalFormat(TargetFormat f) {
+    switch (f) {
+        case TargetFormat::RGBA8:
+            return GL_RGBA8;
+        case TargetFormat::SRGB8:
+            return GL_SRGB8_ALPHA8;
+        case TargetFormat::RGBA16F:
+            return GL_RGBA16F;
+        default:
+            return GL_RGBA32F;
     }
+}
+
+// A target's GL objects: colour textures per attachment (two sets when ping-ponged), depth, and a
+// framebuffer per (set, cube face).
+struct TargetGl {
+    const TargetSpec* spec = nullptr;
+    int buffers = 1;
+    int front = 0;  // the set holding the latest result
+    std::vector<GLuint> color[2];
+    GLuint depth_renderbuffer = 0, depth_texture = 0;
+    std::map<std::pair<int, int>, GLuint> fbos;
+    bool mipmapped = false;
+    bool fullscreen_drawn = false;  // this scene: coverage is the whole frame
+
+    TargetGl() = default;
+    TargetGl(const TargetGl&) = delete;
+    TargetGl& operator=(const TargetGl&) = delete;
+    ~TargetGl() {
+        for (auto& [key, fbo] : fbos) glDeleteFramebuffers(1, &fbo);
+        for (auto& set : color)
+            if (!set.empty()) glDeleteTextures(static_cast<GLsizei>(set.size()), set.data());
+        if (depth_renderbuffer) glDeleteRenderbuffers(1, &depth_renderbuffer);
+        if (depth_texture) glDeleteTextures(1, &depth_texture);
+    }
+    bool cube() const { return spec->type == TargetType::Cube; }
+    int faces() const { return cube() ? 6 : 1; }
+    GLenum textureTarget() const { return cube() ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D; }
 };
 
-GLint glFilter(TextureFilter f) { return f == TextureFilter::Nearest ? GL_NEAREST : GL_LINEAR; }
+bool createTarget(TargetGl* t, std::string* error) {
+    const TargetSpec& s = *t->spec;
+    const GLenum format = internalFormat(s.format);
+    const GLenum tex_target = t->textureTarget();
+    for (int b = 0; b < t->buffers; ++b) {
+        t->color[b].resize(s.attachments.size());
+        glGenTextures(static_cast<GLsizei>(s.attachments.size()), t->color[b].data());
+        for (GLuint tex : t->color[b]) {
+            glBindTexture(tex_target, tex);
+            for (int f = 0; f < t->faces(); ++f) {
+                const GLenum image =
+                    t->cube() ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(f) : GL_TEXTURE_2D;
+                glTexImage2D(image, 0, static_cast<GLint>(format), s.width, s.height, 0, GL_RGBA, GL_FLOAT,
+                             nullptr);
+            }
+            if (t->mipmapped) glGenerateMipmap(tex_target);
+        }
+    }
+    if (s.depth == DepthMode::Texture) {
+        glGenTextures(1, &t->depth_texture);
+        glBindTexture(GL_TEXTURE_2D, t->depth_texture);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, s.width, s.height, 0, GL_DEPTH_COMPONENT,
+                     GL_FLOAT, nullptr);
+    } else if (s.depth == DepthMode::Buffer) {
+        glGenRenderbuffers(1, &t->depth_renderbuffer);
+        glBindRenderbuffer(GL_RENDERBUFFER, t->depth_renderbuffer);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, s.width, s.height);
+    }
+    glBindTexture(tex_target, 0);
+    std::vector<GLenum> draw_buffers;
+    for (std::size_t i = 0; i < s.attachments.size(); ++i)
+        draw_buffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+    for (int b = 0; b < t->buffers; ++b) {
+        for (int f = 0; f < t->faces(); ++f) {
+            GLuint fbo = 0;
+            glGenFramebuffers(1, &fbo);
+            t->fbos[{b, f}] = fbo;
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            const GLenum image =
+                t->cube() ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(f) : GL_TEXTURE_2D;
+            for (std::size_t i = 0; i < s.attachments.size(); ++i)
+                glFramebufferTexture2D(GL_FRAMEBUFFER, draw_buffers[i], image, t->color[b][i], 0);
+            if (t->depth_texture)
+                glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t->depth_texture,
+                                       0);
+            if (t->depth_renderbuffer)
+                glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                          t->depth_renderbuffer);
+            glDrawBuffers(static_cast<GLsizei>(draw_buffers.size()), draw_buffers.data());
+            const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+            if (status != GL_FRAMEBUFFER_COMPLETE) {
+                char buf[32];
+                std::snprintf(buf, sizeof buf, "0x%04X", status);
+                *error = "target '" + s.name + "' is incomplete on this driver (status " + buf + ")";
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+GLint glFilterMin(TextureFilter f) {
+    return f == TextureFilter::Nearest  ? GL_NEAREST
+           : f == TextureFilter::Mipmap ? GL_LINEAR_MIPMAP_LINEAR
+                                        : GL_LINEAR;
+}
 
 GLint glWrap(TextureWrap w) {
     switch (w) {
@@ -102,47 +205,48 @@ GLint glWrap(TextureWrap w) {
     }
 }
 
-void setSampling(GLuint texture, TextureFilter filter, TextureWrap wrap) {
-    glBindTexture(GL_TEXTURE_2D, texture);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, glFilter(filter));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, glFilter(filter));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, glWrap(wrap));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(wrap));
-}
-
-bool createTarget(const TargetSpec& spec, int lab_w, int lab_h, Target* t, std::string* error) {
-    t->width = spec.width > 0 ? spec.width : std::max(1, static_cast<int>(std::lround(lab_w * spec.scale)));
-    t->height =
-        spec.height > 0 ? spec.height : std::max(1, static_cast<int>(std::lround(lab_h * spec.scale)));
-    GLenum internal = GL_RGBA32F;
-    if (spec.format == TargetFormat::RGBA8) internal = GL_RGBA8;
-    if (spec.format == TargetFormat::RGBA16F) internal = GL_RGBA16F;
-    glGenTextures(1, &t->color);
-    glBindTexture(GL_TEXTURE_2D, t->color);
-    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal), t->width, t->height, 0, GL_RGBA, GL_FLOAT,
-                 nullptr);
-    setSampling(t->color, spec.filter, spec.wrap);
-    glGenRenderbuffers(1, &t->depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, t->width, t->height);
-    glGenFramebuffers(1, &t->fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t->color, 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->depth);
-    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-        *error = "target '" + spec.name + "' is incomplete (status 0x" + std::to_string(status) + ")";
-        return false;
+GLenum glDepthFuncOf(DepthFunc f) {
+    switch (f) {
+        case DepthFunc::Never:
+            return GL_NEVER;
+        case DepthFunc::Equal:
+            return GL_EQUAL;
+        case DepthFunc::LessEqual:
+            return GL_LEQUAL;
+        case DepthFunc::Greater:
+            return GL_GREATER;
+        case DepthFunc::NotEqual:
+            return GL_NOTEQUAL;
+        case DepthFunc::GreaterEqual:
+            return GL_GEQUAL;
+        case DepthFunc::Always:
+            return GL_ALWAYS;
+        default:
+            return GL_LESS;
     }
-    return true;
 }
 
-void applyState(const RenderState& s) {
+GLenum glPrimitive(Primitive p) {
+    switch (p) {
+        case Primitive::Points:
+            return GL_POINTS;
+        case Primitive::Lines:
+            return GL_LINES;
+        case Primitive::LineStrip:
+            return GL_LINE_STRIP;
+        case Primitive::TriangleStrip:
+            return GL_TRIANGLE_STRIP;
+        default:
+            return GL_TRIANGLES;
+    }
+}
+
+void applyState(const RenderState& s, bool srgb_target, bool program_point_size) {
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_SCISSOR_TEST);
     if (s.depth_test) {
         glEnable(GL_DEPTH_TEST);
-        glDepthFunc(s.depth_func == DepthFunc::Less        ? GL_LESS
-                    : s.depth_func == DepthFunc::LessEqual ? GL_LEQUAL
-                                                           : GL_ALWAYS);
+        glDepthFunc(glDepthFuncOf(s.depth_func));
     } else {
         glDisable(GL_DEPTH_TEST);
     }
@@ -154,58 +258,49 @@ void applyState(const RenderState& s) {
         glCullFace(s.cull == CullMode::Back ? GL_BACK : GL_FRONT);
     }
     glFrontFace(GL_CCW);
-    glPolygonMode(GL_FRONT_AND_BACK, s.polygon_mode == PolygonMode::Line ? GL_LINE : GL_FILL);
+    glPolygonMode(GL_FRONT_AND_BACK, s.polygon_mode == PolygonMode::Line    ? GL_LINE
+                                     : s.polygon_mode == PolygonMode::Point ? GL_POINT
+                                                                            : GL_FILL);
     glLineWidth(s.line_width);
-    if (s.blend == BlendMode::None) {
-        glDisable(GL_BLEND);
-    } else {
-        glEnable(GL_BLEND);
-        if (s.blend == BlendMode::Alpha)
+    glPointSize(s.point_size);
+    if (program_point_size)
+        glEnable(GL_PROGRAM_POINT_SIZE);
+    else
+        glDisable(GL_PROGRAM_POINT_SIZE);
+    if (srgb_target)
+        glEnable(GL_FRAMEBUFFER_SRGB);
+    else
+        glDisable(GL_FRAMEBUFFER_SRGB);
+    switch (s.blend) {
+        case BlendMode::None:
+            glDisable(GL_BLEND);
+            break;
+        case BlendMode::Alpha:
+            glEnable(GL_BLEND);
             glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-        else
+            break;
+        case BlendMode::Premultiplied:
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+            break;
+        case BlendMode::Additive:
+            glEnable(GL_BLEND);
             glBlendFunc(GL_ONE, GL_ONE);
-    }
-    GLbitfield clear = 0;
-    if (s.clear_color) {
-        glClearColor(s.clear_color->r, s.clear_color->g, s.clear_color->b, s.clear_color->a);
-        clear |= GL_COLOR_BUFFER_BIT;
-    }
-    if (s.clear_depth) {
-        glClearDepth(1.0);
-        clear |= GL_DEPTH_BUFFER_BIT;
-    }
-    if (clear) {
-        glDepthMask(GL_TRUE);  // a disabled depth mask would also mask the clear
-        glClear(clear);
-        glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
+            break;
     }
 }
 
-PassImage readBack(const Target& t, bool with_depth) {
-    PassImage img;
-    const int w = t.width, h = t.height;
-    std::vector<float> rgba(static_cast<std::size_t>(w) * h * 4);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba.data());
-    img.color = grader::Image(w, h, 4);
-    // GL's first row is the bottom one; images are stored top row first.
-    for (int y = 0; y < h; ++y) {
-        std::copy_n(rgba.data() + static_cast<std::size_t>(h - 1 - y) * w * 4,
-                    static_cast<std::size_t>(w) * 4,
-                    img.color.pixels.data() + static_cast<std::size_t>(y) * w * 4);
+void clearTarget(const RenderState& s, bool has_depth) {
+    for (std::size_t i = 0; i < s.clear_colors.size(); ++i) {
+        if (!s.clear_colors[i]) continue;
+        glClearBufferfv(GL_COLOR, static_cast<GLint>(i), glm::value_ptr(*s.clear_colors[i]));
     }
-    img.coverage.assign(static_cast<std::size_t>(w) * h, 1);
-    if (with_depth) {
-        std::vector<float> depth(static_cast<std::size_t>(w) * h);
-        glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x)
-                img.coverage[static_cast<std::size_t>(y) * w + x] =
-                    depth[static_cast<std::size_t>(h - 1 - y) * w + x] < 1.0f ? 1 : 0;
+    if (s.clear_depth && has_depth) {
+        glDepthMask(GL_TRUE);  // a disabled depth mask would also mask the clear
+        const GLfloat one = 1.0f;
+        glClearBufferfv(GL_DEPTH, 0, &one);
+        glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
     }
-    return img;
 }
 
 std::string glErrorName(GLenum e) {
@@ -225,44 +320,57 @@ std::string glErrorName(GLenum e) {
     }
 }
 
-// The scene's camera with the lab's overrides applied.
-Camera resolveCamera(const Scene& scene, const CameraOverride& o) {
-    Camera c = scene.camera;
-    if (o.position) c.position = *o.position;
-    if (o.target) c.target = *o.target;
-    if (o.up) c.up = *o.up;
-    if (o.fov_y_deg) c.fov_y_deg = *o.fov_y_deg;
-    if (o.z_near) c.z_near = *o.z_near;
-    if (o.z_far) c.z_far = *o.z_far;
-    return c;
+// Reads one attachment ("depth" included) of the front set into a top-row-first image; a cube
+// target's faces side by side.
+grader::Image readAttachment(const TargetGl& t, const std::string& attachment) {
+    const TargetSpec& s = *t.spec;
+    const int w = s.width, h = s.height, faces = t.faces();
+    grader::Image img(w * faces, h, 4);
+    std::vector<float> buf(static_cast<std::size_t>(w) * h * 4);
+    const bool depth = attachment == "depth";
+    const auto at = std::find(s.attachments.begin(), s.attachments.end(), attachment);
+    const GLenum read_buffer = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(at - s.attachments.begin());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    for (int f = 0; f < faces; ++f) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbos.at({t.front, f}));
+        if (depth) {
+            std::vector<float> d(static_cast<std::size_t>(w) * h);
+            glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, d.data());
+            for (std::size_t i = 0; i < d.size(); ++i) {
+                buf[i * 4 + 0] = buf[i * 4 + 1] = buf[i * 4 + 2] = d[i];
+                buf[i * 4 + 3] = 1.0f;
+            }
+        } else {
+            glReadBuffer(read_buffer);
+            glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, buf.data());
+        }
+        // GL's first row is the bottom one. Cube faces keep GL's row order, as face images are
+        // stored (their first row is t = 0).
+        for (int y = 0; y < h; ++y) {
+            const int src_y = t.cube() ? y : h - 1 - y;
+            std::copy_n(buf.data() + static_cast<std::size_t>(src_y) * w * 4, static_cast<std::size_t>(w) * 4,
+                        img.pixels.data() +
+                            (static_cast<std::size_t>(y) * w * faces + static_cast<std::size_t>(f) * w) * 4);
+        }
+    }
+    return img;
 }
 
-struct LightUniforms {
-    int count = 0;
-    glm::vec4 position[kMaxLights] = {};  // w = 1: point at xyz; w = 0: xyz points toward the light
-    glm::vec3 color[kMaxLights] = {};     // colour times intensity
-};
-
-LightUniforms resolveLights(const Scene& scene, const SceneSpec& spec, const Camera& camera) {
-    LightUniforms out;
-    auto add = [&out](bool directional, glm::vec3 pos, glm::vec3 dir, glm::vec3 color) {
-        if (out.count >= kMaxLights) return;
-        out.position[out.count] = directional ? glm::vec4(-glm::normalize(dir), 0.0f) : glm::vec4(pos, 1.0f);
-        out.color[out.count] = color;
-        ++out.count;
-    };
-    if (spec.lights) {
-        for (const LightSpec& l : *spec.lights)
-            add(l.type == "directional", l.position, l.direction, l.color * l.intensity);
-    } else {
-        for (const Light& l : scene.lights)
-            add(l.type == LightType::Directional, l.position, l.direction, l.color * l.intensity);
-    }
-    if (out.count == 0) {
-        // A scene without lights is still lit: a white point light above the camera.
-        add(false, camera.position + glm::vec3(0.0f, 2.0f, 0.0f), {}, glm::vec3(1.0f));
-    }
-    return out;
+std::vector<std::uint8_t> readCoverage(const TargetGl& t) {
+    const TargetSpec& s = *t.spec;
+    const std::size_t n = static_cast<std::size_t>(s.width) * t.faces() * s.height;
+    std::vector<std::uint8_t> coverage(n, 1);
+    if (t.fullscreen_drawn || s.depth == DepthMode::None || t.cube()) return coverage;
+    const int w = s.width, h = s.height;
+    std::vector<float> depth(static_cast<std::size_t>(w) * h);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbos.at({t.front, 0}));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            coverage[static_cast<std::size_t>(y) * w + x] =
+                depth[static_cast<std::size_t>(h - 1 - y) * w + x] < 1.0f;
+    return coverage;
 }
 
 }  // namespace
@@ -284,41 +392,25 @@ const char* renderStatusName(RenderStatus status) {
 
 namespace {
 
-// The zero of a lab uniform's type: what a scene-only uniform is reset to in the scenes that do
-// not set it, so no value leaks from one scene into the next.
-UniformValue zeroLike(const UniformValue& v) {
-    return std::visit(
-        [](const auto& x) -> UniformValue {
-            using T = std::decay_t<decltype(x)>;
-            if constexpr (std::is_same_v<T, glm::mat3> || std::is_same_v<T, glm::mat4>)
-                return T(0.0f);
-            else if constexpr (std::is_same_v<T, bool>)
-                return false;
-            else
-                return T(0);
-        },
-        v);
-}
-
-bool isSampler2D(unsigned type) { return type == GL_SAMPLER_2D; }
-
-// One lab on the current context: the steps of renderLab, each in its own method. Owns every GL
-// object it makes and deletes them when it goes.
 class LabRunner {
   public:
     LabRunner(const LabSpec& spec, const std::string& shader_dir, const RenderOptions& options,
               LabRender* out)
-        : spec_(spec), shader_dir_(shader_dir), options_(options), out_(*out) {}
+        : spec_(spec),
+          shader_dir_(shader_dir),
+          options_(options),
+          out_(*out),
+          origin_((std::filesystem::path(spec.lab_dir) / "lab.json").string()) {}
 
     ~LabRunner() {
-        for (auto& [name, tex] : file_textures_) glDeleteTextures(1, &tex);
+        for (auto& [key, tex] : input_textures_) glDeleteTextures(1, &tex.id);
         for (auto& [key, sampler] : samplers_) glDeleteSamplers(1, &sampler);
+        if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
         glUseProgram(0);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
 
-    bool prepare() { return readSources() && buildPrograms() && loadTextures() && createTargets(); }
-
+    bool prepare() { return readSources() && buildPrograms() && createTargets(); }
     bool renderScene(const SceneSpec& scene_spec);
 
   private:
@@ -326,66 +418,95 @@ class LabRunner {
         Scene scene;
         std::vector<std::unique_ptr<GpuMesh>> meshes;
     };
+    struct PassCamera {
+        Camera camera;
+        PassCameraValues values;
+    };
+    struct SceneContext {
+        const SceneSpec* spec;
+        const LoadedScene* scene;
+        std::vector<ResolvedLight> lights;
+        std::vector<PassCamera> cameras;  // by pass index
+        SceneRender* out;
+    };
 
     bool fail(RenderStatus status, const std::string& message) {
-        out_.status = status;
-        out_.message = message;
+        if (out_.status == RenderStatus::Ok) {
+            out_.status = status;
+            out_.message = message;
+        }
         return false;
+    }
+    // A problem with a lab.json key: the lab's file is named, so it reads like a parser message.
+    bool failAt(RenderStatus status, const std::string& path_and_problem) {
+        out_.diagnostics.push_back({"lab.json", 0, 0, "error", path_and_problem});
+        return fail(status, origin_ + ": " + path_and_problem);
     }
     void warnOnce(const std::string& file, const std::string& message) {
         if (warned_.insert(file + '\n' + message).second)
             out_.diagnostics.push_back({file, 0, 0, "warning", message});
     }
+    bool isStudentFile(const std::string& f) const {
+        return std::find(spec_.student_files.begin(), spec_.student_files.end(), f) !=
+               spec_.student_files.end();
+    }
+    FileText readProgramFile(const std::string& file) const;
+    std::string programKey(const PassSpec& pass) const;
+    const ShaderProgram& programOf(const PassSpec& pass) const { return programs_.at(programKey(pass)); }
 
     bool readSources();
     bool buildPrograms();
-    bool loadTextures();
+    void checkOutputs(const ShaderProgram& prog, const PassSpec& pass, const TargetSpec& target);
     bool createTargets();
     const LoadedScene* loadScene(const SceneSpec& scene_spec);
-    GLuint sampler(TextureFilter filter, TextureWrap wrap);
-    bool runPass(std::size_t index, const SceneSpec& scene_spec, const LoadedScene* scene,
-                 const Camera& camera, const LightUniforms& lights, SceneRender* scene_out);
+    GLuint sampler(TextureFilter filter, TextureWrap wrap, bool shadow);
+    bool bindInputs(const PassSpec& pass, const ShaderProgram& prog);
+    bool setLabUniforms(const PassSpec& pass, const ShaderProgram& prog, const SceneContext& ctx);
+    bool runPass(std::size_t index, int iteration, bool last_iteration, SceneContext& ctx);
     void setFramework(const ShaderProgram& prog, const std::string& file, const char* name, GLenum type,
                       const std::function<void(GLint)>& set);
+    void copyFrontToBack(TargetGl& t);
 
     const LabSpec& spec_;
     const std::string& shader_dir_;
     const RenderOptions& options_;
     LabRender& out_;
+    std::string origin_;
 
-    std::map<std::string, std::string> sources_;
-    std::map<std::pair<std::string, std::string>, ShaderProgram> programs_;
-    std::map<std::string, GLuint> file_textures_;
-    std::map<std::pair<int, int>, GLuint> samplers_;
-    std::map<std::string, std::unique_ptr<Target>> targets_;  // by target name
-    std::map<std::string, const TargetSpec*> target_specs_;
-    std::vector<std::string> pass_target_;
-    std::map<std::string, LoadedScene> scenes_;  // by file, meshes uploaded once
+    std::map<std::string, std::string> sources_;  // program file -> text
+    std::map<std::string, ShaderProgram> programs_;
+    std::map<std::string, std::unique_ptr<TargetGl>> targets_;
+    std::map<std::string, InputTexture> input_textures_;
+    std::map<std::tuple<int, int, bool>, GLuint> samplers_;
+    std::map<std::string, LoadedScene> scenes_;
     std::unique_ptr<GpuMesh> fullscreen_;
-    std::map<std::string, UniformValue> scene_uniform_zeros_;
+    GLuint empty_vao_ = 0;
     std::set<std::string> warned_;
+    std::vector<std::pair<GLuint, GLenum>> bound_units_;  // (unit, texture target) of the last pass
 };
 
-// Student files come from the submission, every other program file from the lab folder: a
-// submission can neither omit nor replace the instructor's shared shaders.
+// Student files come from the submission, every other program file from the lab folder (or the
+// course's shared folder): a submission can neither omit nor replace the instructor's shaders.
+FileText LabRunner::readProgramFile(const std::string& file) const {
+    if (isStudentFile(file)) {
+        const std::string& root = options_.containment_root.empty() ? shader_dir_ : options_.containment_root;
+        const std::string prefix = options_.containment_root.empty()
+                                       ? std::string()
+                                       : std::filesystem::path(shader_dir_)
+                                                 .lexically_relative(options_.containment_root)
+                                                 .generic_string() +
+                                             "/";
+        return readFileInside(root, prefix + file, kMaxShaderBytes);
+    }
+    const bool shared = file.rfind("shared/", 0) == 0;
+    return readFileInside(shared ? spec_.labs_root : spec_.lab_dir, file, kMaxShaderBytes);
+}
+
 bool LabRunner::readSources() {
-    const std::string& student_root =
-        options_.containment_root.empty() ? shader_dir_ : options_.containment_root;
-    const std::string prefix = options_.containment_root.empty()
-                                   ? std::string()
-                                   : std::filesystem::path(shader_dir_)
-                                             .lexically_relative(options_.containment_root)
-                                             .generic_string() +
-                                         "/";
     for (const PassSpec& pass : spec_.passes) {
         for (const std::string* file : {&pass.program.vertex, &pass.program.fragment}) {
             if (sources_.count(*file)) continue;
-            const bool student = std::find(spec_.student_files.begin(), spec_.student_files.end(), *file) !=
-                                 spec_.student_files.end();
-            // Resolved against the submission root, so a lab folder that is itself a symlink out
-            // of the submission is refused like a symlinked file.
-            FileText t = student ? readFileInside(student_root, prefix + *file, kMaxShaderBytes)
-                                 : readFileInside(spec_.lab_dir, *file, kMaxShaderBytes);
+            FileText t = readProgramFile(*file);
             if (!t.ok) {
                 out_.diagnostics.push_back({*file, 0, 0, "error", t.error});
                 return fail(RenderStatus::Missing, t.error);
@@ -396,17 +517,39 @@ bool LabRunner::readSources() {
     return true;
 }
 
+std::string LabRunner::programKey(const PassSpec& pass) const {
+    std::string key = pass.program.vertex + '\n' + pass.program.fragment;
+    if (const TargetSpec* t = spec_.findTarget(pass.target))
+        for (const std::string& a : t->attachments) key += '\n' + a;
+    return key;
+}
+
 bool LabRunner::buildPrograms() {
+    // `#include "name"`: from the submission when `name` is a student file, else from the lab
+    // folder or the shared folder; an include's own includes follow the same rule.
+    const IncludeReader includes = [this](const std::string&, const std::string& name) {
+        if (name.empty() || name[0] == '/' || name.find("..") != std::string::npos) {
+            FileText t;
+            t.error = "include paths are relative to the lab folder (or shared/...) and have no '..'";
+            return t;
+        }
+        return readProgramFile(name);
+    };
     for (const PassSpec& pass : spec_.passes) {
-        const auto key = std::make_pair(pass.program.vertex, pass.program.fragment);
+        const std::string key = programKey(pass);
         if (programs_.count(key)) continue;
+        const TargetSpec& target = *spec_.findTarget(pass.target);
         ShaderProgram& prog = programs_[key];
-        prog.build(key.first, sources_[key.first], key.second, sources_[key.second]);
+        prog.build(StageSource{pass.program.vertex, sources_[pass.program.vertex], includes},
+                   StageSource{pass.program.fragment, sources_[pass.program.fragment], includes},
+                   target.attachments);
         for (const Diagnostic& d : prog.diagnostics()) out_.diagnostics.push_back(d);
         if (!prog.compiled()) {
             out_.status = RenderStatus::CompileError;
         } else if (!prog.linked() && out_.status == RenderStatus::Ok) {
             out_.status = RenderStatus::LinkError;
+        } else if (prog.linked()) {
+            checkOutputs(prog, pass, target);
         }
     }
     if (out_.status == RenderStatus::Ok) return true;
@@ -419,59 +562,51 @@ bool LabRunner::buildPrograms() {
     return false;
 }
 
-bool LabRunner::loadTextures() {
-    for (const PassSpec& pass : spec_.passes) {
-        for (const PassInput& in : pass.inputs) {
-            if (in.texture_file.empty() || file_textures_.count(in.texture_file)) continue;
-            const PathResult p = resolveInside(spec_.lab_dir, in.texture_file);
-            grader::Image img;
-            std::string err;
-            if (!p.ok || !grader::readPng(p.path, &img, &err))
-                return fail(RenderStatus::RenderError, p.ok ? err : p.error);
-            // RGBA floats with the top row last: GL's row 0 is the bottom one. Grey fills RGB.
-            std::vector<float> rgba(static_cast<std::size_t>(img.width) * img.height * 4, 1.0f);
-            for (int y = 0; y < img.height; ++y) {
-                for (int x = 0; x < img.width; ++x) {
-                    float* dst = &rgba[(static_cast<std::size_t>(img.height - 1 - y) * img.width + x) * 4];
-                    for (int c = 0; c < 4; ++c) {
-                        if (img.channels == 1 && c < 3)
-                            dst[c] = img.at(x, y, 0);
-                        else if (img.channels > 1 && c < img.channels)
-                            dst[c] = img.at(x, y, c);
-                    }
-                }
-            }
-            GLuint tex = 0;
-            glGenTextures(1, &tex);
-            glBindTexture(GL_TEXTURE_2D, tex);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, img.width, img.height, 0, GL_RGBA, GL_FLOAT,
-                         rgba.data());
-            file_textures_[in.texture_file] = tex;
+// Fragment outputs and the target's attachments must meet: an output no attachment receives is
+// lost without a word from OpenGL, and an attachment no output writes keeps garbage.
+void LabRunner::checkOutputs(const ShaderProgram& prog, const PassSpec& pass, const TargetSpec& target) {
+    if (!prog.outputsKnown()) return;
+    const std::string& file = pass.program.fragment;
+    std::set<int> written;
+    for (const FragmentOutput& o : prog.outputs()) {
+        if (o.location >= 0 && static_cast<std::size_t>(o.location) < target.attachments.size()) {
+            written.insert(o.location);
+            continue;
         }
+        std::string list;
+        for (const std::string& a : target.attachments) list += (list.empty() ? "" : ", ") + a;
+        warnOnce(file, "output `" + o.name + "` (location " + std::to_string(o.location) +
+                           ") reaches no attachment of target '" + target.name + "' (" + list +
+                           "): nothing it writes is seen. Name outputs o_<attachment>.");
     }
-    return true;
+    for (std::size_t i = 0; i < target.attachments.size(); ++i)
+        if (!written.count(static_cast<int>(i)))
+            warnOnce(file, "no output writes attachment '" + target.attachments[i] + "' of target '" +
+                               target.name + "' (name it o_" + target.attachments[i] + ")");
 }
 
 bool LabRunner::createTargets() {
-    pass_target_.resize(spec_.passes.size());
-    for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
-        const PassSpec& pass = spec_.passes[i];
-        if (!pass.draw_into.empty()) {
-            for (std::size_t j = 0; j < i; ++j)
-                if (spec_.passes[j].name == pass.draw_into) pass_target_[i] = pass_target_[j];
-            continue;
+    std::set<std::string> self_read, mipmapped;
+    for (const PassSpec& pass : spec_.passes) {
+        for (const PassInput& in : pass.inputs) {
+            if (in.source != InputSource::Target) continue;
+            if (in.target == pass.target && in.attachment != "depth") self_read.insert(in.target);
+            const TargetSpec* t = spec_.findTarget(in.target);
+            if (in.filter.value_or(t ? t->filter : TextureFilter::Linear) == TextureFilter::Mipmap)
+                mipmapped.insert(in.target);
         }
-        auto t = std::make_unique<Target>();
-        std::string err;
-        if (!createTarget(pass.target, spec_.width, spec_.height, t.get(), &err))
-            return fail(RenderStatus::RenderError, err);
-        pass_target_[i] = pass.target.name;
-        target_specs_[pass.target.name] = &pass.target;
-        targets_[pass.target.name] = std::move(t);
     }
-    for (const SceneSpec& s : spec_.scenes)
-        for (const auto& [name, value] : s.uniforms) scene_uniform_zeros_.emplace(name, zeroLike(value));
+    for (const TargetSpec& spec : spec_.targets) {
+        auto t = std::make_unique<TargetGl>();
+        t->spec = &spec;
+        t->buffers = self_read.count(spec.name) ? 2 : 1;
+        t->mipmapped = mipmapped.count(spec.name) > 0;
+        std::string err;
+        if (!createTarget(t.get(), &err)) return fail(RenderStatus::RenderError, err);
+        targets_[spec.name] = std::move(t);
+    }
     fullscreen_ = fullscreenTriangle();
+    glGenVertexArrays(1, &empty_vao_);
     return true;
 }
 
@@ -491,18 +626,153 @@ const LabRunner::LoadedScene* LabRunner::loadScene(const SceneSpec& scene_spec) 
     return &scenes_.emplace(path, std::move(loaded)).first->second;
 }
 
-GLuint LabRunner::sampler(TextureFilter filter, TextureWrap wrap) {
-    const auto key = std::make_pair(static_cast<int>(filter), static_cast<int>(wrap));
+GLuint LabRunner::sampler(TextureFilter filter, TextureWrap wrap, bool shadow) {
+    const auto key = std::make_tuple(static_cast<int>(filter), static_cast<int>(wrap), shadow);
     auto it = samplers_.find(key);
     if (it != samplers_.end()) return it->second;
     GLuint s = 0;
     glGenSamplers(1, &s);
-    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, glFilter(filter));
-    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, glFilter(filter));
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, glWrap(wrap));
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, glWrap(wrap));
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, glFilterMin(filter));
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, filter == TextureFilter::Nearest ? GL_NEAREST : GL_LINEAR);
+    for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glSamplerParameteri(s, p, glWrap(wrap));
+    if (shadow) {
+        glSamplerParameteri(s, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glSamplerParameteri(s, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
     samplers_[key] = s;
     return s;
+}
+
+// Every sampler the program declares gets its own unit, so samplers of different types never
+// share one (a GL_INVALID_OPERATION at draw time). The lab's inputs are bound by the sampler type
+// the program declares; a sampler the lab does not feed reads an empty unit (black).
+bool LabRunner::bindInputs(const PassSpec& pass, const ShaderProgram& prog) {
+    for (const auto& [unit, target] : bound_units_) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(target, 0);
+        glBindSampler(unit, 0);
+    }
+    bound_units_.clear();
+    const std::string& file = pass.program.fragment;
+    GLuint unit = 0;
+    std::set<std::string> fed;
+    for (const UniformSlot& slot : prog.uniforms()) {
+        if (glTypeInfo(slot.type).kind != ScalarKind::Sampler) continue;
+        if (slot.size > 1)
+            return failAt(RenderStatus::LinkError,
+                          "the program declares `" + std::string(glslTypeName(slot.type)) + " " + slot.name +
+                              "[" + std::to_string(slot.size) +
+                              "]`: arrays of samplers are not supported; declare one per input");
+        if (static_cast<int>(unit) >= kMaxTextureUnits)
+            return failAt(RenderStatus::LinkError, "the program declares more than 16 samplers");
+        const PassInput* in = nullptr;
+        for (const PassInput& candidate : pass.inputs)
+            if (candidate.sampler == slot.name) in = &candidate;
+        const GLenum tex_target = samplerTextureTarget(slot.type);
+        const std::string declared = "`" + std::string(glslTypeName(slot.type)) + " " + slot.name + "`";
+        glUniform1i(slot.location, static_cast<GLint>(unit));
+        if (!in) {
+            warnOnce(file, "sampler " + slot.name + " gets no texture from the lab (" + pass.path +
+                               ".inputs has none by that name); it reads black");
+            ++unit;
+            continue;
+        }
+        fed.insert(in->sampler);
+        if (tex_target == 0)
+            return failAt(RenderStatus::LinkError,
+                          in->path + ": the program declares " + declared +
+                              "; inputs feed sampler1D, sampler2D, sampler3D, samplerCube "
+                              "and sampler2DShadow");
+        GLuint texture = 0;
+        TextureFilter filter = in->filter.value_or(TextureFilter::Linear);
+        TextureWrap wrap = in->wrap.value_or(TextureWrap::ClampToEdge);
+        if (in->source == InputSource::Target) {
+            TargetGl& t = *targets_.at(in->target);
+            filter = in->filter.value_or(t.spec->filter);
+            wrap = in->wrap.value_or(t.spec->wrap);
+            const bool depth = in->attachment == "depth";
+            if (depth) {
+                if (tex_target != GL_TEXTURE_2D)
+                    return failAt(RenderStatus::LinkError, in->path +
+                                                               ": a depth texture is read with sampler2D or "
+                                                               "sampler2DShadow; the program declares " +
+                                                               declared);
+                texture = t.depth_texture;
+            } else {
+                if (isShadowSampler(slot.type))
+                    return failAt(RenderStatus::LinkError,
+                                  in->path + ": the program declares " + declared +
+                                      ", which compares depths: feed it a depth attachment (\"" + in->target +
+                                      ".depth\")");
+                if (tex_target != t.textureTarget())
+                    return failAt(RenderStatus::LinkError, in->path + ": target '" + in->target + "' is " +
+                                                               (t.cube() ? "a cube map (declare samplerCube)"
+                                                                         : "2D (declare sampler2D)") +
+                                                               "; the program declares " + declared);
+                const auto at =
+                    std::find(t.spec->attachments.begin(), t.spec->attachments.end(), in->attachment);
+                const std::size_t index =
+                    in->attachment.empty() ? 0 : static_cast<std::size_t>(at - t.spec->attachments.begin());
+                texture = t.color[t.front][index];
+            }
+        } else {
+            const bool mipmaps = filter == TextureFilter::Mipmap;
+            const std::string key = in->path + '\n' + std::to_string(slot.type) + (mipmaps ? "m" : "");
+            auto it = input_textures_.find(key);
+            if (it == input_textures_.end()) {
+                InputTexture tex;
+                const std::string problem = createInputTexture(spec_, *in, slot.type, mipmaps, &tex);
+                if (!problem.empty()) return failAt(RenderStatus::LinkError, in->path + ": " + problem);
+                it = input_textures_.emplace(key, tex).first;
+            }
+            texture = it->second.id;
+        }
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(tex_target, texture);
+        glBindSampler(unit, sampler(filter, wrap, isShadowSampler(slot.type)));
+        bound_units_.emplace_back(unit, tex_target);
+        ++unit;
+    }
+    glActiveTexture(GL_TEXTURE0);
+    for (const PassInput& in : pass.inputs) {
+        if (fed.count(in.sampler)) continue;
+        const std::string text = prog.preparedText(0) + prog.preparedText(1);
+        if (!mentionsIdentifier(text, in.sampler))
+            warnOnce(file, in.path + ": the lab gives a texture to " + in.sampler + ", which neither " +
+                               pass.program.vertex + " nor " + file + " declares" +
+                               didYouMean(in.sampler, declaredUniformNames(text)));
+    }
+    return true;
+}
+
+bool LabRunner::setLabUniforms(const PassSpec& pass, const ShaderProgram& prog, const SceneContext& ctx) {
+    const PassCameraLookup cameras = [this, &ctx](const std::string& name) -> const PassCameraValues* {
+        for (std::size_t i = 0; i < spec_.passes.size(); ++i)
+            if (spec_.passes[i].name == name) return &ctx.cameras[i].values;
+        return nullptr;
+    };
+    auto apply = [&](const UniformSetting& u) {
+        const UniformApplyResult r = applyUniform(prog, u, cameras);
+        if (!r.error.empty()) return failAt(RenderStatus::LinkError, r.error);
+        if (!r.declared) {
+            const std::string text = prog.preparedText(0) + prog.preparedText(1);
+            if (!mentionsIdentifier(text, u.name))
+                warnOnce(pass.program.fragment, "lab.json sets " + u.name + " (" + u.path +
+                                                    "), but neither " + pass.program.vertex + " nor " +
+                                                    pass.program.fragment + " mentions it" +
+                                                    didYouMean(u.name, declaredUniformNames(text)));
+        }
+        return true;
+    };
+    for (const UniformSetting& u : pass.uniforms) {
+        const bool overridden = std::any_of(ctx.spec->uniforms.begin(), ctx.spec->uniforms.end(),
+                                            [&](const UniformSetting& s) { return s.name == u.name; });
+        if (!overridden && !apply(u)) return false;
+    }
+    for (const UniformSetting& u : ctx.spec->uniforms)
+        if (!apply(u)) return false;
+    return true;
 }
 
 // Sets a framework uniform when the shader declares it; one declared with another type is
@@ -512,11 +782,30 @@ void LabRunner::setFramework(const ShaderProgram& prog, const std::string& file,
     const UniformSlot* s = prog.uniform(name);
     if (!s) return;
     if (s->type != type) {
-        warnOnce(file, std::string(name) +
-                           " is provided by the framework with another type: see docs/student-contract.md");
+        warnOnce(file, std::string(name) + " is provided by the framework as " + glslTypeName(type) +
+                           "; it is declared " + glslTypeName(s->type) + " (see docs/student-contract.md)");
         return;
     }
     set(s->location);
+}
+
+void LabRunner::copyFrontToBack(TargetGl& t) {
+    const int back = 1 - t.front;
+    for (int f = 0; f < t.faces(); ++f) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbos.at({t.front, f}));
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t.fbos.at({back, f}));
+        for (std::size_t i = 0; i < t.spec->attachments.size(); ++i) {
+            const GLenum a = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+            glReadBuffer(a);
+            glDrawBuffers(1, &a);
+            glBlitFramebuffer(0, 0, t.spec->width, t.spec->height, 0, 0, t.spec->width, t.spec->height,
+                              GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        }
+        std::vector<GLenum> all;
+        for (std::size_t i = 0; i < t.spec->attachments.size(); ++i)
+            all.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+        glDrawBuffers(static_cast<GLsizei>(all.size()), all.data());
+    }
 }
 
 bool LabRunner::renderScene(const SceneSpec& scene_spec) {
@@ -526,18 +815,63 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     // Every target starts each scene blank, so nothing of the previous scene survives in a pass
     // that draws without clearing.
     for (auto& [name, t] : targets_) {
-        glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
-        glDepthMask(GL_TRUE);
-        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-        glClearDepth(1.0);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        t->front = 0;
+        t->fullscreen_drawn = false;
+        for (const auto& [key, fbo] : t->fbos) {
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+            glDepthMask(GL_TRUE);
+            glDisable(GL_FRAMEBUFFER_SRGB);
+            const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+            for (std::size_t i = 0; i < t->spec->attachments.size(); ++i)
+                glClearBufferfv(GL_COLOR, static_cast<GLint>(i), zero);
+            if (t->spec->depth != DepthMode::None) {
+                const GLfloat one = 1.0f;
+                glClearBufferfv(GL_DEPTH, 0, &one);
+            }
+        }
     }
-    const Camera camera = resolveCamera(scene->scene, scene_spec.camera);
-    const LightUniforms lights = resolveLights(scene->scene, scene_spec, camera);
+    SceneContext ctx;
+    ctx.spec = &scene_spec;
+    ctx.scene = scene;
+    Camera camera = scene->scene.camera;
+    ctx.lights = resolveLights(scene->scene, scene_spec, camera);
+    std::string problem = applyCameraOverride(scene->scene, ctx.lights, scene_spec.camera, &camera);
+    if (!problem.empty()) return failAt(RenderStatus::RenderError, scene_spec.path + ".camera: " + problem);
+    for (const PassSpec& pass : spec_.passes) {
+        PassCamera pc;
+        pc.camera = camera;
+        if (pass.camera.any()) {
+            problem = applyCameraOverride(scene->scene, ctx.lights, pass.camera, &pc.camera);
+            if (!problem.empty())
+                return failAt(RenderStatus::RenderError,
+                              pass.path + ": scene '" + scene_spec.name + "': " + problem);
+        }
+        const TargetSpec& t = *spec_.findTarget(pass.target);
+        pc.values.view = viewMatrix(pc.camera);
+        pc.values.projection =
+            projectionMatrix(pc.camera, static_cast<float>(t.width) / static_cast<float>(t.height));
+        pc.values.position = pc.camera.position;
+        ctx.cameras.push_back(pc);
+    }
     SceneRender scene_out;
     scene_out.scene = scene_spec.name;
-    for (std::size_t i = 0; i < spec_.passes.size(); ++i)
-        if (!runPass(i, scene_spec, scene, camera, lights, &scene_out)) return false;
+    ctx.out = &scene_out;
+    for (std::size_t i = 0; i < spec_.passes.size();) {
+        const PassSpec& pass = spec_.passes[i];
+        if (pass.loop < 0) {
+            if (!runPass(i, 0, true, ctx)) return false;
+            ++i;
+            continue;
+        }
+        const LoopSpec& loop = spec_.loops[static_cast<std::size_t>(pass.loop)];
+        const auto it = scene_spec.repeats.find(loop.declared_by);
+        const int count = it != scene_spec.repeats.end() ? it->second : loop.count;
+        for (int k = 0; k < count; ++k)
+            for (std::size_t j = loop.first; j <= loop.last; ++j)
+                if (!runPass(j, k, k + 1 == count, ctx)) return false;
+        i = loop.last + 1;
+    }
     glFinish();
     scene_out.render_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -545,92 +879,69 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     return true;
 }
 
-bool LabRunner::runPass(std::size_t index, const SceneSpec& scene_spec, const LoadedScene* scene,
-                        const Camera& camera, const LightUniforms& lights, SceneRender* scene_out) {
+bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, SceneContext& ctx) {
     const PassSpec& pass = spec_.passes[index];
-    const ShaderProgram& prog = programs_.at({pass.program.vertex, pass.program.fragment});
+    const ShaderProgram& prog = programOf(pass);
     const std::string& file = pass.program.fragment;
-    Target& target = *targets_.at(pass_target_[index]);
-    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
-    glViewport(0, 0, target.width, target.height);
-    applyState(pass.state);
+    TargetGl& target = *targets_.at(pass.target);
+    const TargetSpec& tspec = *target.spec;
+    const PassCamera& pc = ctx.cameras[index];
+    const int write = target.buffers == 2 ? 1 - target.front : 0;
+    const bool clears_all = std::all_of(pass.state.clear_colors.begin(), pass.state.clear_colors.end(),
+                                        [](const auto& c) { return c.has_value(); });
+    if (target.buffers == 2 && !clears_all) copyFrontToBack(target);
+
+    glUseProgram(prog.id());
+    prog.restoreDefaults();
+    if (!bindInputs(pass, prog)) return false;
+    if (!setLabUniforms(pass, prog, ctx)) return false;
     glUseProgram(prog.id());
 
-    // Inputs on consecutive units; every other unit is left empty, so a sampler the lab does not
-    // feed reads the incomplete texture 0 (black) rather than whatever was bound last.
-    for (GLuint unit = 0; unit < 16; ++unit) {
-        glActiveTexture(GL_TEXTURE0 + unit);
-        glBindTexture(GL_TEXTURE_2D, 0);
-        glBindSampler(unit, 0);
-    }
-    GLuint unit = 0;
-    for (const PassInput& in : pass.inputs) {
-        GLuint tex = 0;
-        TextureFilter filter = TextureFilter::Linear;
-        TextureWrap wrap = TextureWrap::ClampToEdge;
-        if (!in.from_pass.empty()) {
-            tex = targets_.at(in.from_pass)->color;
-            filter = target_specs_.at(in.from_pass)->filter;
-            wrap = target_specs_.at(in.from_pass)->wrap;
-        } else {
-            tex = file_textures_.at(in.texture_file);
-        }
-        if (in.filter) filter = *in.filter;
-        if (in.wrap) wrap = *in.wrap;
-        glActiveTexture(GL_TEXTURE0 + unit);
-        glBindTexture(GL_TEXTURE_2D, tex);
-        glBindSampler(unit, sampler(filter, wrap));
-        if (const UniformSlot* s = prog.uniform(in.sampler)) {
-            if (isSampler2D(s->type))
-                glUniform1i(s->location, static_cast<GLint>(unit));
-            else
-                warnOnce(file, in.sampler + " receives a texture from the lab; declare it as sampler2D");
-        }
-        ++unit;
-    }
-    glActiveTexture(GL_TEXTURE0);
-
-    const float aspect = static_cast<float>(target.width) / static_cast<float>(target.height);
-    const glm::mat4 view = glm::lookAt(camera.position, camera.target, camera.up);
-    const glm::mat4 projection =
-        glm::perspective(glm::radians(camera.fov_y_deg), aspect, camera.z_near, camera.z_far);
+    const glm::mat4& view = pc.values.view;
+    const glm::mat4& projection = pc.values.projection;
+    const glm::mat4 view_projection = projection * view;
+    const glm::mat4 inverse_vp = glm::inverse(view_projection);
     setFramework(prog, file, "u_view", GL_FLOAT_MAT4,
                  [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(view)); });
     setFramework(prog, file, "u_projection", GL_FLOAT_MAT4,
                  [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(projection)); });
+    setFramework(prog, file, "u_view_projection", GL_FLOAT_MAT4,
+                 [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(view_projection)); });
+    setFramework(prog, file, "u_inverse_view_projection", GL_FLOAT_MAT4,
+                 [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(inverse_vp)); });
     setFramework(prog, file, "u_camera_position", GL_FLOAT_VEC3,
-                 [&](GLint l) { glUniform3fv(l, 1, glm::value_ptr(camera.position)); });
-    setFramework(prog, file, "u_time", GL_FLOAT, [&](GLint l) { glUniform1f(l, scene_spec.time); });
+                 [&](GLint l) { glUniform3fv(l, 1, glm::value_ptr(pc.camera.position)); });
+    setFramework(prog, file, "u_time", GL_FLOAT, [&](GLint l) { glUniform1f(l, ctx.spec->time); });
+    setFramework(prog, file, "u_iteration", GL_INT, [&](GLint l) { glUniform1i(l, iteration); });
     setFramework(prog, file, "u_resolution", GL_FLOAT_VEC2, [&](GLint l) {
-        glUniform2f(l, static_cast<float>(target.width), static_cast<float>(target.height));
+        glUniform2f(l, static_cast<float>(tspec.width), static_cast<float>(tspec.height));
     });
-    setFramework(prog, file, "u_light_count", GL_INT, [&](GLint l) { glUniform1i(l, lights.count); });
+    const int light_count = std::min<int>(kMaxLights, static_cast<int>(ctx.lights.size()));
+    glm::vec4 light_position[kMaxLights] = {};
+    glm::vec3 light_color[kMaxLights] = {};
+    for (int i = 0; i < light_count; ++i) {
+        const ResolvedLight& l = ctx.lights[static_cast<std::size_t>(i)];
+        light_position[i] = l.directional ? glm::vec4(-l.direction, 0.0f) : glm::vec4(l.position, 1.0f);
+        light_color[i] = l.color;
+    }
+    setFramework(prog, file, "u_light_count", GL_INT, [&](GLint l) { glUniform1i(l, light_count); });
     // All declared entries are written (unused ones zero), so no light of another scene lingers.
     if (const UniformSlot* s = prog.uniform("u_light_position")) {
         if (s->type == GL_FLOAT_VEC4)
-            glUniform4fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(lights.position[0]));
+            glUniform4fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(light_position[0]));
         else
             warnOnce(file, "u_light_position is provided by the framework as vec4");
     }
     if (const UniformSlot* s = prog.uniform("u_light_color")) {
         if (s->type == GL_FLOAT_VEC3)
-            glUniform3fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(lights.color[0]));
+            glUniform3fv(s->location, std::min(s->size, kMaxLights), glm::value_ptr(light_color[0]));
         else
             warnOnce(file, "u_light_color is provided by the framework as vec3");
     }
 
-    // Lab values: scene-only names reset, then the pass's values, then the scene's overrides.
-    for (const auto& [name, zero] : scene_uniform_zeros_)
-        if (!pass.uniforms.count(name) && !scene_spec.uniforms.count(name)) prog.set(name, zero);
-    for (const UniformMap* map : {&pass.uniforms, &scene_spec.uniforms}) {
-        for (const auto& [name, value] : *map) {
-            const std::string warning = prog.set(name, value);
-            if (!warning.empty()) warnOnce(file, warning);
-        }
-    }
-    glUseProgram(prog.id());
-
-    auto draw = [&](const GpuMesh& mesh, const glm::mat4& model, const glm::vec4& base_color) {
+    const bool program_point_size =
+        pass.draw == DrawKind::Procedural && mentionsIdentifier(prog.preparedText(0), "gl_PointSize");
+    auto draw = [&](const GpuMesh* mesh, const glm::mat4& model, const glm::vec4& base_color) {
         const glm::mat4 model_view = view * model;
         const glm::mat4 mvp = projection * model_view;
         const glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(model));
@@ -644,33 +955,65 @@ bool LabRunner::runPass(std::size_t index, const SceneSpec& scene_spec, const Lo
                      [&](GLint l) { glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(normal_matrix)); });
         setFramework(prog, file, "u_base_color", GL_FLOAT_VEC4,
                      [&](GLint l) { glUniform4fv(l, 1, glm::value_ptr(base_color)); });
-        glBindVertexArray(mesh.vao);
-        glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+        if (!mesh) {
+            glBindVertexArray(empty_vao_);
+            glDrawArrays(glPrimitive(pass.primitive), 0, pass.vertex_count);
+        } else {
+            glBindVertexArray(mesh->vao);
+            glDrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, nullptr);
+        }
     };
-    if (pass.draw == DrawKind::Fullscreen) {
-        draw(*fullscreen_, glm::mat4(1.0f), glm::vec4(1.0f));
-    } else {
-        for (const DrawItem& item : scene->scene.draw_items) {
-            const glm::vec4 base =
-                item.material >= 0
-                    ? scene->scene.materials[static_cast<std::size_t>(item.material)].base_color
-                    : glm::vec4(1.0f);
-            draw(*scene->meshes[static_cast<std::size_t>(item.mesh)], item.world, base);
+    for (int face = 0; face < target.faces(); ++face) {
+        glBindFramebuffer(GL_FRAMEBUFFER, target.fbos.at({write, face}));
+        glViewport(0, 0, tspec.width, tspec.height);
+        applyState(pass.state, tspec.format == TargetFormat::SRGB8, program_point_size);
+        clearTarget(pass.state, tspec.depth != DepthMode::None);
+        setFramework(prog, file, "u_cube_face", GL_INT, [&](GLint l) { glUniform1i(l, face); });
+        if (pass.draw == DrawKind::Fullscreen) {
+            draw(fullscreen_.get(), glm::mat4(1.0f), glm::vec4(1.0f));
+        } else if (pass.draw == DrawKind::Procedural) {
+            draw(nullptr, glm::mat4(1.0f), glm::vec4(1.0f));
+        } else {
+            for (const DrawItem& item : ctx.scene->scene.draw_items) {
+                const glm::vec4 base =
+                    item.material >= 0
+                        ? ctx.scene->scene.materials[static_cast<std::size_t>(item.material)].base_color
+                        : glm::vec4(1.0f);
+                draw(ctx.scene->meshes[static_cast<std::size_t>(item.mesh)].get(), item.world, base);
+            }
         }
     }
     glBindVertexArray(0);
-
     const GLenum err = glGetError();
     if (err != GL_NO_ERROR)
         return fail(RenderStatus::RenderError,
-                    "pass '" + pass.name + "', scene '" + scene_spec.name + "': " + glErrorName(err));
-    if (pass.graded || options_.keep_all_passes) {
-        // Coverage comes from depth: scene passes and passes drawing into another target.
-        PassImage img = readBack(target, pass.draw == DrawKind::Scene || !pass.draw_into.empty());
+                    "pass '" + pass.name + "', scene '" + ctx.spec->name + "': " + glErrorName(err));
+    target.front = write;
+    if (pass.draw == DrawKind::Fullscreen) target.fullscreen_drawn = true;
+    if (target.mipmapped) {
+        for (GLuint tex : target.color[target.front]) {
+            glBindTexture(target.textureTarget(), tex);
+            glGenerateMipmap(target.textureTarget());
+        }
+        glBindTexture(target.textureTarget(), 0);
+    }
+    if (!last_iteration) return true;
+    std::vector<std::string> read = pass.graded;
+    if (options_.keep_all_passes) {
+        read = tspec.attachments;
+        if (tspec.depth != DepthMode::None && !target.cube()) read.push_back("depth");
+    }
+    if (read.empty()) return true;
+    const std::vector<std::uint8_t> coverage = readCoverage(target);
+    for (const std::string& attachment : read) {
+        PassImage img;
         img.pass = pass.name;
-        img.target = pass_target_[index];
-        img.graded = pass.graded;
-        scene_out->passes.push_back(std::move(img));
+        img.target = tspec.name;
+        img.attachment = attachment;
+        img.graded = std::find(pass.graded.begin(), pass.graded.end(), attachment) != pass.graded.end();
+        img.color = readAttachment(target, attachment);
+        img.coverage = coverage;
+        ctx.out->passes.push_back(std::move(img));
     }
     return true;
 }

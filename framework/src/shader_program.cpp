@@ -3,23 +3,31 @@
 
 #include <cctype>
 #include <chrono>
+#include <climits>
+#include <cstdlib>
 #include <cstring>
-#include <glm/gtc/type_ptr.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 
+#include "gl_types.h"
 #include "shaderlab/gl.h"
 
 namespace shaderlab {
 
 namespace {
 
+constexpr int kMaxIncludeDepth = 16;
+// Driver log lines longer than this are cut before any regex sees them (std::regex recurses per
+// character and a student can make the driver echo a huge line).
+constexpr std::size_t kMaxLogLine = 2000;
+
 // Skips blank lines, // comments and /* */ comments at the start of the file to find the
 // `#version` directive, which must come before anything else but comments and whitespace.
 int findVersionLine(const std::vector<std::string>& lines) {
     bool in_block = false;
     for (std::size_t i = 0; i < lines.size(); ++i) {
-        std::string s = lines[i];
+        const std::string& s = lines[i];
         std::size_t p = 0;
         while (p < s.size()) {
             if (in_block) {
@@ -64,54 +72,80 @@ std::vector<std::string> splitLines(const std::string& text) {
     return lines;
 }
 
-// The GLSL type a lab.json value stands for.
-unsigned glTypeOf(const UniformValue& v) {
-    switch (v.index()) {
-        case 0:
-            return GL_FLOAT;
-        case 1:
-            return GL_INT;
-        case 2:
-            return GL_BOOL;
-        case 3:
-            return GL_FLOAT_VEC2;
-        case 4:
-            return GL_FLOAT_VEC3;
-        case 5:
-            return GL_FLOAT_VEC4;
-        case 6:
-            return GL_FLOAT_MAT3;
-        default:
-            return GL_FLOAT_MAT4;
-    }
+// A decimal number from a log or directive, clamped to int range (a student can write
+// "#line 2147483646" or "#version 99999999999").
+int clampedInt(const std::string& digits) {
+    errno = 0;
+    const long long v = std::strtoll(digits.c_str(), nullptr, 10);
+    if (errno == ERANGE || v > INT_MAX) return INT_MAX;
+    return v < INT_MIN ? INT_MIN : static_cast<int>(v);
 }
 
-const char* glslTypeName(unsigned type) {
-    switch (type) {
-        case GL_FLOAT:
-            return "float";
-        case GL_INT:
-            return "int";
-        case GL_BOOL:
-            return "bool";
-        case GL_FLOAT_VEC2:
-            return "vec2";
-        case GL_FLOAT_VEC3:
-            return "vec3";
-        case GL_FLOAT_VEC4:
-            return "vec4";
-        case GL_FLOAT_MAT3:
-            return "mat3";
-        case GL_FLOAT_MAT4:
-            return "mat4";
-        case GL_SAMPLER_2D:
-            return "sampler2D";
-        case GL_SAMPLER_CUBE:
-            return "samplerCube";
-        default:
-            return "another type";
-    }
+// The file name of `#include "name"` when `line` is such a directive.
+bool includeDirective(const std::string& line, std::string* name) {
+    std::size_t p = 0;
+    while (p < line.size() && (line[p] == ' ' || line[p] == '\t')) ++p;
+    if (p >= line.size() || line[p] != '#') return false;
+    ++p;
+    while (p < line.size() && (line[p] == ' ' || line[p] == '\t')) ++p;
+    if (line.compare(p, 7, "include") != 0) return false;
+    p += 7;
+    while (p < line.size() && (line[p] == ' ' || line[p] == '\t')) ++p;
+    if (p >= line.size() || line[p] != '"') return false;
+    const std::size_t close = line.find('"', p + 1);
+    if (close == std::string::npos) return false;
+    *name = line.substr(p + 1, close - p - 1);
+    return true;
 }
+
+struct Expander {
+    const IncludeReader& includes;
+    bool old_line_rule;
+    PreparedSource& out;
+    std::set<std::string> seen;  // resolved paths already included
+
+    std::string lineDirective(int next_line, std::size_t file) const {
+        return "#line " + std::to_string(old_line_rule ? next_line - 1 : next_line) + " " +
+               std::to_string(file) + "\n";
+    }
+
+    // Appends lines[first..] of file `file` (numbered from first_number), expanding includes.
+    void append(const std::vector<std::string>& lines, std::size_t first, int first_number, std::size_t file,
+                int depth, std::string& text) {
+        for (std::size_t i = first; i < lines.size(); ++i) {
+            const int number = first_number + static_cast<int>(i - first);
+            std::string name;
+            if (!includeDirective(lines[i], &name)) {
+                text += lines[i] + "\n";
+                continue;
+            }
+            text += "\n";  // the directive's own line, kept so numbering holds
+            auto fail = [&](const std::string& problem) {
+                out.errors.push_back(
+                    {out.files[file], number, 0, "error", "#include \"" + name + "\": " + problem});
+            };
+            if (!includes) {
+                fail("includes are not available here");
+                continue;
+            }
+            if (depth >= kMaxIncludeDepth) {
+                fail("includes nest deeper than " + std::to_string(kMaxIncludeDepth) + " levels");
+                continue;
+            }
+            const FileText t = includes(out.files[file], name);
+            if (!t.ok) {
+                fail(t.error);
+                continue;
+            }
+            if (!seen.insert(t.path).second) continue;  // each file once, like an include guard
+            const std::size_t index = out.files.size();
+            out.files.push_back(name);
+            text += lineDirective(1, index);
+            append(splitLines(t.text), 0, 1, index, depth + 1, text);
+            text += lineDirective(number + 1, file);
+        }
+    }
+};
 
 }  // namespace
 
@@ -120,23 +154,26 @@ std::string defaultPrelude() {
            "#define SL_MAX_LIGHTS 4\n";
 }
 
-PreparedSource prepareSource(const std::string& student_text, const std::string& prelude) {
+PreparedSource prepareSource(const std::string& student_text, const std::string& prelude,
+                             const std::string& file, const IncludeReader& includes) {
     // A UTF-8 byte-order mark (some Windows editors write one) is not GLSL.
     const bool bom = student_text.compare(0, 3, "\xEF\xBB\xBF") == 0;
     const std::vector<std::string> lines = splitLines(bom ? student_text.substr(3) : student_text);
     const int version_line = findVersionLine(lines);
     PreparedSource out;
+    out.files.push_back(file);
     std::string text;
     int next_student_line = 1;
     // GLSL 3.30 (ES 3.00) and later: "#line N" numbers the next line N. Earlier versions number
     // it N + 1 (GLSL 1.50 section 3.3), so the directive must say one less.
     bool old_line_rule = false;
     if (version_line >= 0) {
-        const std::string& v = lines[static_cast<std::size_t>(version_line)];
-        static const std::regex version_re(R"(#\s*version\s+(\d+)\s*(es)?)");
+        std::string v = lines[static_cast<std::size_t>(version_line)];
+        if (v.size() > 200) v.resize(200);
+        static const std::regex version_re(R"(#\s*version\s+(\d{1,12})\s*(es)?)");
         std::smatch m;
         if (std::regex_search(v, m, version_re)) {
-            const int number = std::stoi(m[1]);
+            const int number = clampedInt(m[1]);
             old_line_rule = m[2].matched ? number < 300 : number < 330;
         }
         for (int i = 0; i <= version_line; ++i) text += lines[static_cast<std::size_t>(i)] + "\n";
@@ -145,48 +182,59 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
         text += "#version 330 core\n";
     }
     text += prelude;
-    text += "#line " + std::to_string(old_line_rule ? next_student_line - 1 : next_student_line) + " 0\n";
-    for (std::size_t i = static_cast<std::size_t>(next_student_line - 1); i < lines.size(); ++i)
-        text += lines[i] + "\n";
+    Expander expander{includes, old_line_rule, out, {}};
+    text += expander.lineDirective(next_student_line, 0);
+    expander.append(lines, static_cast<std::size_t>(next_student_line - 1), next_student_line, 0, 0, text);
     out.text = std::move(text);
     out.first_student_line = next_student_line;
     return out;
 }
 
-std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& file) {
+std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<std::string>& files) {
     // Mesa:      0:12(5): error: `x' undeclared
     // NVIDIA:    0(12) : error C1008: undefined variable "x"
     // Others:    ERROR: 0:12: 'x' : undeclared identifier
     static const std::regex mesa(
-        R"(^\s*\d+:(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning)\s*:?\s*(.*)$)", std::regex::icase);
-    static const std::regex nvidia(R"(^\s*\d+\((\d+)\)\s*:\s*(error|warning)\s*\w*\s*:?\s*(.*)$)",
+        R"(^\s*(\d{1,9}):(\d{1,12})\((\d{1,12})\):\s*(?:preprocessor\s+)?(error|warning)\s*:?\s*(.*)$)",
+        std::regex::icase);
+    static const std::regex nvidia(R"(^\s*(\d{1,9})\((\d{1,12})\)\s*:\s*(error|warning)\s*\w*\s*:?\s*(.*)$)",
                                    std::regex::icase);
-    static const std::regex khr(R"(^\s*(ERROR|WARNING)\s*:\s*\d+:(\d+)\s*:?\s*(.*)$)", std::regex::icase);
+    static const std::regex khr(R"(^\s*(ERROR|WARNING)\s*:\s*(\d{1,9}):(\d{1,12})\s*:?\s*(.*)$)",
+                                std::regex::icase);
+    const std::string fallback = files.empty() ? std::string() : files.front();
+    auto fileOf = [&](const std::string& number) {
+        const int n = clampedInt(number);
+        return n >= 0 && static_cast<std::size_t>(n) < files.size() ? files[static_cast<std::size_t>(n)]
+                                                                    : fallback;
+    };
+    auto lower = [](std::string s) {
+        for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    };
     std::vector<Diagnostic> out;
     for (const std::string& raw : splitLines(log)) {
-        std::string line = raw;
+        std::string line = raw.size() > kMaxLogLine ? raw.substr(0, kMaxLogLine) + " [...]" : raw;
         while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
         if (line.empty()) continue;
         std::smatch m;
         Diagnostic d;
-        d.file = file;
-        auto lower = [](std::string s) {
-            for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-            return s;
-        };
+        d.file = fallback;
         if (std::regex_match(line, m, mesa)) {
-            d.line = std::stoi(m[1]);
-            d.column = std::stoi(m[2]);
+            d.file = fileOf(m[1]);
+            d.line = clampedInt(m[2]);
+            d.column = clampedInt(m[3]);
+            d.severity = lower(m[4]);
+            d.message = m[5];
+        } else if (std::regex_match(line, m, nvidia)) {
+            d.file = fileOf(m[1]);
+            d.line = clampedInt(m[2]);
             d.severity = lower(m[3]);
             d.message = m[4];
-        } else if (std::regex_match(line, m, nvidia)) {
-            d.line = std::stoi(m[1]);
-            d.severity = lower(m[2]);
-            d.message = m[3];
         } else if (std::regex_match(line, m, khr)) {
             d.severity = lower(m[1]);
-            d.line = std::stoi(m[2]);
-            d.message = m[3];
+            d.file = fileOf(m[2]);
+            d.line = clampedInt(m[3]);
+            d.message = m[4];
         } else {
             // A continuation of the previous message, or a line without a position.
             if (!out.empty() && (raw.rfind(' ', 0) == 0 || raw.rfind('\t', 0) == 0)) {
@@ -201,6 +249,10 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& 
     return out;
 }
 
+std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& file) {
+    return parseInfoLog(log, std::vector<std::string>{file});
+}
+
 ShaderProgram::~ShaderProgram() { release(); }
 
 ShaderProgram::ShaderProgram(ShaderProgram&& other) noexcept { *this = std::move(other); }
@@ -212,10 +264,16 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
         other.program_ = 0;
         compiled_ = other.compiled_;
         linked_ = other.linked_;
+        outputs_known_ = other.outputs_known_;
         stages_ = std::move(other.stages_);
         link_log_ = std::move(other.link_log_);
         diagnostics_ = std::move(other.diagnostics_);
-        uniforms_ = std::move(other.uniforms_);
+        uniform_index_ = std::move(other.uniform_index_);
+        uniform_list_ = std::move(other.uniform_list_);
+        outputs_ = std::move(other.outputs_);
+        prepared_[0] = std::move(other.prepared_[0]);
+        prepared_[1] = std::move(other.prepared_[1]);
+        defaults_ = std::move(other.defaults_);
     }
     return *this;
 }
@@ -227,22 +285,32 @@ void ShaderProgram::release() {
 
 bool ShaderProgram::build(const std::string& vertex_file, const std::string& vertex_text,
                           const std::string& fragment_file, const std::string& fragment_text) {
+    return build(StageSource{vertex_file, vertex_text, {}}, StageSource{fragment_file, fragment_text, {}});
+}
+
+bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment,
+                          const std::vector<std::string>& attachments) {
     release();
     stages_.clear();
     diagnostics_.clear();
-    uniforms_.clear();
+    uniform_index_.clear();
+    uniform_list_.clear();
+    outputs_.clear();
+    defaults_.clear();
     link_log_.clear();
-    compiled_ = linked_ = false;
+    compiled_ = linked_ = outputs_known_ = false;
 
-    auto compile = [this](GLenum kind, const std::string& file, const std::string& text) -> GLuint {
+    auto compile = [this](GLenum kind, const StageSource& source) -> GLuint {
         StageLog log;
-        log.file = file;
+        log.file = source.file;
         log.stage = kind == GL_VERTEX_SHADER ? "vertex" : "fragment";
-        const PreparedSource src = prepareSource(text, defaultPrelude());
+        const PreparedSource src = prepareSource(source.text, defaultPrelude(), source.file, source.includes);
+        prepared_[kind == GL_VERTEX_SHADER ? 0 : 1] = src.text;
         const auto t0 = std::chrono::steady_clock::now();
         const GLuint shader = glCreateShader(kind);
         const char* ptr = src.text.c_str();
-        glShaderSource(shader, 1, &ptr, nullptr);
+        const GLint length = static_cast<GLint>(src.text.size());
+        glShaderSource(shader, 1, &ptr, &length);
         glCompileShader(shader);
         GLint ok = GL_FALSE;
         glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -256,18 +324,20 @@ bool ShaderProgram::build(const std::string& vertex_file, const std::string& ver
             buf.resize(std::strlen(buf.c_str()));
             log.info_log = buf;
         }
-        log.compiled = ok == GL_TRUE;
-        for (auto& d : parseInfoLog(log.info_log, file)) diagnostics_.push_back(std::move(d));
+        for (const Diagnostic& d : src.errors) diagnostics_.push_back(d);
+        log.compiled = ok == GL_TRUE && src.errors.empty();
+        for (auto& d : parseInfoLog(log.info_log, src.files)) diagnostics_.push_back(std::move(d));
+        const bool compiled = log.compiled;
         stages_.push_back(std::move(log));
-        if (ok != GL_TRUE) {
+        if (!compiled) {
             glDeleteShader(shader);
             return 0;
         }
         return shader;
     };
 
-    const GLuint vs = compile(GL_VERTEX_SHADER, vertex_file, vertex_text);
-    const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_file, fragment_text);
+    const GLuint vs = compile(GL_VERTEX_SHADER, vertex);
+    const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment);
     if (!vs || !fs) {
         if (vs) glDeleteShader(vs);
         if (fs) glDeleteShader(fs);
@@ -281,6 +351,10 @@ bool ShaderProgram::build(const std::string& vertex_file, const std::string& ver
     glBindAttribLocation(program_, 0, "a_position");
     glBindAttribLocation(program_, 1, "a_normal");
     glBindAttribLocation(program_, 2, "a_texcoord");
+    for (std::size_t i = 0; i < attachments.size(); ++i) {
+        glBindFragDataLocation(program_, static_cast<GLuint>(i), ("o_" + attachments[i]).c_str());
+        glBindFragDataLocation(program_, static_cast<GLuint>(i), attachments[i].c_str());
+    }
     glLinkProgram(program_);
     glDetachShader(program_, vs);
     glDetachShader(program_, fs);
@@ -295,9 +369,8 @@ bool ShaderProgram::build(const std::string& vertex_file, const std::string& ver
         glGetProgramInfoLog(program_, len, nullptr, buf.data());
         buf.resize(std::strlen(buf.c_str()));
         link_log_ = buf;
-        // Link errors concern the pair; attribute them to the fragment shader's file with
-        // both names in the message when the driver gives no position.
-        for (auto& d : parseInfoLog(link_log_, vertex_file + " + " + fragment_file))
+        // Link errors concern the pair; the driver gives no position.
+        for (auto& d : parseInfoLog(link_log_, vertex.file + " + " + fragment.file))
             diagnostics_.push_back(d);
     }
     linked_ = ok == GL_TRUE;
@@ -317,48 +390,118 @@ bool ShaderProgram::build(const std::string& vertex_file, const std::string& ver
         slot.type = type;
         slot.size = size;
         if (n.size() > 3 && n.compare(n.size() - 3, 3, "[0]") == 0) n.resize(n.size() - 3);
-        if (slot.location >= 0) uniforms_[n] = slot;
+        slot.name = n;
+        if (slot.location < 0) continue;  // in a uniform block: not set by name
+        uniform_index_[n] = uniform_list_.size();
+        uniform_list_.push_back(slot);
     }
+    if (GLAD_GL_VERSION_4_3) {
+        outputs_known_ = true;
+        GLint outputs = 0;
+        glGetProgramInterfaceiv(program_, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &outputs);
+        for (GLint i = 0; i < outputs; ++i) {
+            char name[256];
+            GLsizei name_len = 0;
+            glGetProgramResourceName(program_, GL_PROGRAM_OUTPUT, static_cast<GLuint>(i), sizeof name,
+                                     &name_len, name);
+            const GLenum prop = GL_LOCATION;
+            GLint location = -1;
+            glGetProgramResourceiv(program_, GL_PROGRAM_OUTPUT, static_cast<GLuint>(i), 1, &prop, 1, nullptr,
+                                   &location);
+            std::string n(name, static_cast<std::size_t>(name_len));
+            if (n.rfind("gl_", 0) == 0) continue;
+            if (n.size() > 3 && n.compare(n.size() - 3, 3, "[0]") == 0) n.resize(n.size() - 3);
+            outputs_.push_back({n, location});
+        }
+    }
+    snapshotDefaults();
     return true;
 }
 
-const UniformSlot* ShaderProgram::uniform(const std::string& name) const {
-    const auto it = uniforms_.find(name);
-    return it == uniforms_.end() ? nullptr : &it->second;
+void ShaderProgram::snapshotDefaults() {
+    for (const UniformSlot& s : uniform_list_) {
+        const GlTypeInfo info = glTypeInfo(s.type);
+        if (info.kind == ScalarKind::Sampler || info.kind == ScalarKind::Other ||
+            info.kind == ScalarKind::Double)
+            continue;
+        for (int e = 0; e < s.size; ++e) {
+            const std::string element = s.size > 1 ? s.name + "[" + std::to_string(e) + "]" : s.name;
+            const GLint location = e == 0 ? s.location : glGetUniformLocation(program_, element.c_str());
+            if (location < 0) continue;
+            Default d{location, s.type, 1,
+                      std::vector<std::uint32_t>(static_cast<std::size_t>(info.components))};
+            if (info.kind == ScalarKind::Float)
+                glGetUniformfv(program_, location, reinterpret_cast<GLfloat*>(d.bits.data()));
+            else if (info.kind == ScalarKind::Uint)
+                glGetUniformuiv(program_, location, reinterpret_cast<GLuint*>(d.bits.data()));
+            else
+                glGetUniformiv(program_, location, reinterpret_cast<GLint*>(d.bits.data()));
+            defaults_.push_back(std::move(d));
+        }
+    }
 }
 
-std::string ShaderProgram::set(const std::string& name, const UniformValue& value) const {
-    const UniformSlot* slot = uniform(name);
-    if (!slot) return {};  // not used by this shader: nothing to do
-    const unsigned want = glTypeOf(value);
-    const bool int_like = slot->type == GL_INT || slot->type == GL_BOOL;
-    if (slot->type != want && !(int_like && (want == GL_INT || want == GL_BOOL))) {
-        return "uniform " + name + " is declared " + glslTypeName(slot->type) +
-               " in the shader but lab.json gives " + glslTypeName(want);
-    }
+void ShaderProgram::restoreDefaults() const {
     glUseProgram(program_);
-    std::visit(
-        [slot](const auto& v) {
-            using T = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<T, float>)
-                glUniform1f(slot->location, v);
-            else if constexpr (std::is_same_v<T, int>)
-                glUniform1i(slot->location, v);
-            else if constexpr (std::is_same_v<T, bool>)
-                glUniform1i(slot->location, v ? 1 : 0);
-            else if constexpr (std::is_same_v<T, glm::vec2>)
-                glUniform2fv(slot->location, 1, glm::value_ptr(v));
-            else if constexpr (std::is_same_v<T, glm::vec3>)
-                glUniform3fv(slot->location, 1, glm::value_ptr(v));
-            else if constexpr (std::is_same_v<T, glm::vec4>)
-                glUniform4fv(slot->location, 1, glm::value_ptr(v));
-            else if constexpr (std::is_same_v<T, glm::mat3>)
-                glUniformMatrix3fv(slot->location, 1, GL_FALSE, glm::value_ptr(v));
-            else
-                glUniformMatrix4fv(slot->location, 1, GL_FALSE, glm::value_ptr(v));
-        },
-        value);
-    return {};
+    for (const Default& d : defaults_) {
+        const GlTypeInfo info = glTypeInfo(d.type);
+        const auto* f = reinterpret_cast<const GLfloat*>(d.bits.data());
+        const auto* i = reinterpret_cast<const GLint*>(d.bits.data());
+        const auto* u = reinterpret_cast<const GLuint*>(d.bits.data());
+        switch (d.type) {
+            case GL_FLOAT_MAT2:
+                glUniformMatrix2fv(d.location, 1, GL_FALSE, f);
+                continue;
+            case GL_FLOAT_MAT3:
+                glUniformMatrix3fv(d.location, 1, GL_FALSE, f);
+                continue;
+            case GL_FLOAT_MAT4:
+                glUniformMatrix4fv(d.location, 1, GL_FALSE, f);
+                continue;
+            case GL_FLOAT_MAT2x3:
+                glUniformMatrix2x3fv(d.location, 1, GL_FALSE, f);
+                continue;
+            case GL_FLOAT_MAT2x4:
+                glUniformMatrix2x4fv(d.location, 1, GL_FALSE, f);
+                continue;
+            case GL_FLOAT_MAT3x2:
+                glUniformMatrix3x2fv(d.location, 1, GL_FALSE, f);
+                continue;
+            case GL_FLOAT_MAT3x4:
+                glUniformMatrix3x4fv(d.location, 1, GL_FALSE, f);
+                continue;
+            case GL_FLOAT_MAT4x2:
+                glUniformMatrix4x2fv(d.location, 1, GL_FALSE, f);
+                continue;
+            case GL_FLOAT_MAT4x3:
+                glUniformMatrix4x3fv(d.location, 1, GL_FALSE, f);
+                continue;
+            default:
+                break;
+        }
+        const int n = info.components;
+        if (info.kind == ScalarKind::Float) {
+            if (n == 1) glUniform1fv(d.location, 1, f);
+            if (n == 2) glUniform2fv(d.location, 1, f);
+            if (n == 3) glUniform3fv(d.location, 1, f);
+            if (n == 4) glUniform4fv(d.location, 1, f);
+        } else if (info.kind == ScalarKind::Uint) {
+            if (n == 1) glUniform1uiv(d.location, 1, u);
+            if (n == 2) glUniform2uiv(d.location, 1, u);
+            if (n == 3) glUniform3uiv(d.location, 1, u);
+            if (n == 4) glUniform4uiv(d.location, 1, u);
+        } else {
+            if (n == 1) glUniform1iv(d.location, 1, i);
+            if (n == 2) glUniform2iv(d.location, 1, i);
+            if (n == 3) glUniform3iv(d.location, 1, i);
+            if (n == 4) glUniform4iv(d.location, 1, i);
+        }
+    }
+}
+
+const UniformSlot* ShaderProgram::uniform(const std::string& name) const {
+    const auto it = uniform_index_.find(name);
+    return it == uniform_index_.end() ? nullptr : &uniform_list_[it->second];
 }
 
 }  // namespace shaderlab

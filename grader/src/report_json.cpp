@@ -37,7 +37,7 @@ PixelBox boxFrom(const json& j) {
 json metrics(const ReportMetrics& m) {
     return {{"psnr_db", number(m.psnr_db)},
             {"identical", std::isinf(m.psnr_db) && m.psnr_db > 0},
-            {"ssim", number(m.ssim)},
+            {"ssim", m.ssim_defined ? number(m.ssim) : json(nullptr)},
             {"flip_mean", number(m.flip_mean)},
             {"flip_weighted_median", number(m.flip_weighted_median)},
             {"mismatch_fraction", number(m.mismatch_fraction)},
@@ -52,6 +52,7 @@ ReportMetrics metricsFrom(const json& j) {
     const bool identical = j.value("identical", false);
     m.psnr_db =
         fromNumber(j.value("psnr_db", json()), identical ? std::numeric_limits<double>::infinity() : 0.0);
+    m.ssim_defined = j.value("ssim", json()).is_number();
     m.ssim = fromNumber(j.value("ssim", json()), 0.0);
     m.flip_mean = fromNumber(j.value("flip_mean", json()), 0.0);
     m.flip_weighted_median = fromNumber(j.value("flip_weighted_median", json()), 0.0);
@@ -83,6 +84,10 @@ std::string reportToJson(const Report& report) {
             json passes = json::array();
             for (const ReportPass& p : s.passes)
                 passes.push_back({{"name", p.name},
+                                  {"pass", p.pass},
+                                  {"attachment", p.attachment},
+                                  {"range", p.range},
+                                  {"hdr_scale", number(p.hdr_scale)},
                                   {"passed", p.passed},
                                   {"reasons", p.reasons},
                                   {"metrics", metrics(p.metrics)},
@@ -102,6 +107,13 @@ std::string reportToJson(const Report& report) {
                               {"passes", passes},
                               {"render_ms", number(s.render_ms)}});
         }
+        json goals = json::array();
+        for (const ReportGoal& g : lab.goals)
+            goals.push_back({{"id", g.id},
+                             {"title", g.title},
+                             {"points", number(g.points)},
+                             {"met", g.met},
+                             {"failing", g.failing}});
         labs.push_back({{"id", lab.id},
                         {"title", lab.title},
                         {"status", lab.status},
@@ -110,6 +122,7 @@ std::string reportToJson(const Report& report) {
                         {"message", lab.message},
                         {"reference_source", lab.reference_source},
                         {"diagnostics", diags},
+                        {"goals", goals},
                         {"scenes", scenes},
                         {"wall_ms", number(lab.wall_ms)}});
     }
@@ -156,6 +169,15 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
         for (const json& d : l.value("diagnostics", json::array()))
             lab.diagnostics.push_back({d.value("file", ""), d.value("line", 0), d.value("column", 0),
                                        d.value("severity", ""), d.value("message", "")});
+        for (const json& g : l.value("goals", json::array())) {
+            ReportGoal goal;
+            goal.id = g.value("id", "");
+            goal.title = g.value("title", "");
+            goal.points = fromNumber(g.value("points", json()), 0.0);
+            goal.met = g.value("met", false);
+            goal.failing = g.value("failing", std::vector<std::string>{});
+            lab.goals.push_back(std::move(goal));
+        }
         for (const json& s : l.value("scenes", json::array())) {
             ReportScene scene;
             scene.name = s.value("name", "");
@@ -177,6 +199,10 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
             for (const json& p : s.value("passes", json::array())) {
                 ReportPass pass;
                 pass.name = p.value("name", "");
+                pass.pass = p.value("pass", "");
+                pass.attachment = p.value("attachment", "");
+                pass.range = p.value("range", "");
+                pass.hdr_scale = fromNumber(p.value("hdr_scale", json()), 1.0);
                 pass.passed = p.value("passed", false);
                 pass.reasons = p.value("reasons", std::vector<std::string>{});
                 pass.metrics = metricsFrom(p.value("metrics", json()));
@@ -212,12 +238,19 @@ std::string reportToGradescope(const Report& report) {
                              {"visibility", "visible"}});
             continue;
         }
-        for (const ReportScene& s : lab.scenes) {
-            std::string output = s.status == "passed" ? "matches the reference" : s.message;
-            tests.push_back({{"name", lab.id + " / " + s.name},
-                             {"score", number(s.score)},
-                             {"max_score", number(s.max_score)},
-                             {"status", s.status == "passed" ? "passed" : "failed"},
+        // One test per learning goal: what the student learned is what earns points.
+        for (const ReportGoal& g : lab.goals) {
+            std::string output = g.met ? "met: every scene that tests it matches the reference" : "not met;";
+            for (const std::string& check : g.failing) {
+                const std::string scene = check.substr(0, check.find('/'));
+                output += "\n" + check;
+                for (const ReportScene& s : lab.scenes)
+                    if (s.name == scene && !s.message.empty()) output += ": " + s.message;
+            }
+            tests.push_back({{"name", lab.id + " / " + g.title},
+                             {"score", number(g.met ? g.points : 0.0)},
+                             {"max_score", number(g.points)},
+                             {"status", g.met ? "passed" : "failed"},
                              {"output", output},
                              {"visibility", "visible"}});
         }

@@ -168,6 +168,18 @@ std::string reportToHtml(const Report& report) {
             for (const ReportDiagnostic& d : lab.diagnostics) h << escapeMarkup(diagnosticLine(d)) << "\n";
             h << "</pre>\n";
         }
+        if (!lab.goals.empty()) {
+            h << "<table class=\"metrics\"><tr><th>learning goal</th><th>points</th><th></th></tr>\n";
+            for (const ReportGoal& g : lab.goals) {
+                std::string failing;
+                for (const std::string& f : g.failing) failing += (failing.empty() ? "" : ", ") + f;
+                h << "<tr><td>" << escapeMarkup(g.title) << "</td><td>" << num(g.met ? g.points : 0.0, "%.2f")
+                  << " / " << num(g.points, "%.2f") << "</td><td class=\""
+                  << (g.met ? "passed\">met" : "failed\">not met")
+                  << (failing.empty() ? "" : ": " + escapeMarkup(failing)) << "</td></tr>\n";
+            }
+            h << "</table>\n";
+        }
         if (!lab.reference_source.empty())
             h << "<p>Reference images from " << escapeMarkup(lab.reference_source) << ".</p>\n";
         for (const ReportScene& s : lab.scenes) {
@@ -181,7 +193,8 @@ std::string reportToHtml(const Report& report) {
               << "\" alt=\"difference\"><br>FLIP error (mismatches outlined)</td><td>"
               << "<table class=\"metrics\">"
               << "<tr><td>PSNR</td><td>" << num(s.metrics.psnr_db, "%.2f") << " dB</td></tr>"
-              << "<tr><td>SSIM</td><td>" << num(s.metrics.ssim, "%.4f") << "</td></tr>"
+              << "<tr><td>SSIM</td><td>"
+              << (s.metrics.ssim_defined ? num(s.metrics.ssim, "%.4f") : "undefined") << "</td></tr>"
               << "<tr><td>FLIP mean</td><td>" << num(s.metrics.flip_mean, "%.4f") << "</td></tr>"
               << "<tr><td>mismatching</td><td>" << num(100.0 * s.metrics.mismatch_fraction, "%.2f")
               << " %</td></tr>"

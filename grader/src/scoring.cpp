@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace grader {
 
@@ -12,6 +13,24 @@ std::string fmt(const char* format, double a, double b) {
     char buf[160];
     std::snprintf(buf, sizeof buf, format, a, b);
     return buf;
+}
+
+// "<what> <value><unit> is <relation> <limit><unit>", with as many decimals (from `digits`, at
+// most 6) as it takes for the two numbers to read differently: never "0.950 is below 0.950".
+std::pair<std::string, std::string> distinct(double value, double limit, int digits) {
+    char a[64], b[64];
+    for (;; ++digits) {
+        std::snprintf(a, sizeof a, "%.*f", digits, value);
+        std::snprintf(b, sizeof b, "%.*f", digits, limit);
+        if (std::string(a) != b || digits >= 6) break;
+    }
+    return {a, b};
+}
+
+std::string compared(const char* what, double value, const char* relation, double limit, int digits,
+                     const char* unit = "") {
+    const auto [a, b] = distinct(value, limit, digits);
+    return std::string(what) + " " + a + unit + " is " + relation + " " + b + unit;
 }
 
 MetricSet measure(const Image& ref, const Image& test, const Mask* mask, float tolerance,
@@ -28,7 +47,9 @@ MetricSet measure(const Image& ref, const Image& test, const Mask* mask, float t
     // SSIM leaves a 5-pixel border out of its mean; a mask lying entirely inside that border
     // would have no SSIM at all, so such an image is judged on the whole frame's SSIM instead.
     if (!ssim.ok && mask) ssim = computeSsim(ref, test, SsimConfig{});
-    m.ssim = ssim.ssim;
+    // An image smaller than the window has no SSIM at all: the other metrics decide.
+    m.ssim_defined = ssim.ok;
+    m.ssim = ssim.ok ? ssim.ssim : 0.0;
     FlipConfig fc;
     fc.mask = mask;
     fc.want_map = flip_out != nullptr;
@@ -56,9 +77,51 @@ Image quantise8(const Image& image) {
     return out;
 }
 
+Image rgbeRoundTrip(const Image& image) {
+    Image out = image;
+    if (image.channels < 3) return out;
+    for (std::size_t p = 0; p + 2 < out.pixels.size(); p += static_cast<std::size_t>(out.channels)) {
+        float c[3];
+        for (int k = 0; k < 3; ++k) {
+            const float v = out.pixels[p + static_cast<std::size_t>(k)];
+            c[k] = std::isfinite(v) && v > 0.0f ? v : 0.0f;
+        }
+        const float largest = std::fmax(c[0], std::fmax(c[1], c[2]));
+        if (largest < 1e-32f) {
+            for (int k = 0; k < 3; ++k) out.pixels[p + static_cast<std::size_t>(k)] = 0.0f;
+            continue;
+        }
+        // Encode as stb_image_write does, decode as stb_image does.
+        int exponent = 0;
+        const float normalize = std::frexp(largest, &exponent) * 256.0f / largest;
+        const float unit = std::ldexp(1.0f, exponent - 8);
+        for (int k = 0; k < 3; ++k) {
+            const float mantissa = std::floor(std::fmin(c[k] * normalize, 255.0f));
+            out.pixels[p + static_cast<std::size_t>(k)] = mantissa * unit;
+        }
+    }
+    return out;
+}
+
+namespace {
+
+// Hdr range: RGBE rounding, then both images over the reference's peak when it exceeds 1.
+void toUnitRange(const Image& reference, const Image& test, Image* ref_out, Image* test_out, double* scale) {
+    *ref_out = rgbeRoundTrip(reference);
+    *test_out = rgbeRoundTrip(test);
+    float peak = 1.0f;
+    for (std::size_t p = 0; p < ref_out->pixels.size(); ++p)
+        if (ref_out->channels < 4 || p % 4 != 3) peak = std::fmax(peak, ref_out->pixels[p]);
+    *scale = peak;
+    for (Image* img : {ref_out, test_out})
+        for (float& v : img->pixels) v = std::fmin(v / peak, 1.0f);
+}
+
+}  // namespace
+
 ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>& reference_coverage,
                         const Image& test, const std::vector<std::uint8_t>& test_coverage,
-                        const Thresholds& thresholds) {
+                        const Thresholds& thresholds, ImageRange range) {
     ImageVerdict v;
     if (reference.width != test.width || reference.height != test.height) {
         v.reasons.push_back(
@@ -71,8 +134,13 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
     v.non_finite_box = nf.bounding_box;
     v.non_finite_first = nf.first_positions;
 
-    const Image ref8 = quantise8(reference);
-    const Image test8 = quantise8(test);
+    Image ref8, test8;
+    if (range == ImageRange::Hdr) {
+        toUnitRange(reference, test, &ref8, &test8, &v.hdr_scale);
+    } else {
+        ref8 = quantise8(reference);
+        test8 = quantise8(test);
+    }
 
     // Covered: drawn by the reference or by the student, so a missing object and an extra one
     // both count. When nothing is covered (a fullscreen pass, or an empty frame) the whole
@@ -102,16 +170,17 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
     if (v.covered.psnr_db >= thresholds.psnr_min_db)
         ++v.checks_met;
     else
-        v.reasons.push_back(fmt("PSNR %.1f dB is below %.1f dB", v.covered.psnr_db, thresholds.psnr_min_db));
-    if (v.covered.ssim >= thresholds.ssim_min)
+        v.reasons.push_back(compared("PSNR", v.covered.psnr_db, "below", thresholds.psnr_min_db, 1, " dB"));
+    if (!v.covered.ssim_defined)
+        v.checks_total = 3;
+    else if (v.covered.ssim >= thresholds.ssim_min)
         ++v.checks_met;
     else
-        v.reasons.push_back(fmt("SSIM %.3f is below %.3f", v.covered.ssim, thresholds.ssim_min));
+        v.reasons.push_back(compared("SSIM", v.covered.ssim, "below", thresholds.ssim_min, 3));
     if (v.covered.flip_mean <= thresholds.flip_mean_max)
         ++v.checks_met;
     else
-        v.reasons.push_back(
-            fmt("FLIP mean %.3f is above %.3f", v.covered.flip_mean, thresholds.flip_mean_max));
+        v.reasons.push_back(compared("FLIP mean", v.covered.flip_mean, "above", thresholds.flip_mean_max, 3));
     if (v.covered.mismatch_fraction <= thresholds.mismatch_max) {
         ++v.checks_met;
     } else {
@@ -121,9 +190,9 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
             std::snprintf(buf, sizeof buf, " (worst around x=%d, y=%d)", v.worst.centre.x, v.worst.centre.y);
             where = buf;
         }
-        v.reasons.push_back(fmt("%.1f%% of covered pixels differ, more than %.1f%%",
-                                100.0 * v.covered.mismatch_fraction, 100.0 * thresholds.mismatch_max) +
-                            where);
+        const auto [got, allowed] =
+            distinct(100.0 * v.covered.mismatch_fraction, 100.0 * thresholds.mismatch_max, 1);
+        v.reasons.push_back(got + " % of covered pixels differ, more than " + allowed + " %" + where);
     }
     if (nf.any()) {
         char buf[200];
@@ -136,12 +205,6 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
     }
     v.passed = !nf.any() && v.checks_met == v.checks_total;
     return v;
-}
-
-double scenePoints(const ImageVerdict& verdict, double max_points) {
-    if (verdict.passed) return max_points;
-    if (verdict.nan_count || verdict.inf_count) return 0.0;
-    return 0.5 * max_points * verdict.checks_met / verdict.checks_total;
 }
 
 }  // namespace grader

@@ -32,10 +32,11 @@ grader::Report gradeSubmission(const std::string& submission_dir, const GradeOpt
                                const LabCallback& on_lab = {});
 
 // Where a lab's golden image lives: <lab_dir>/golden/<scene>.png for the final image,
-// <scene>.<pass>.png for an intermediate graded pass, and ".coverage.png" instead of ".png"
-// for the coverage mask.
-std::string goldenPath(const std::string& lab_dir, const std::string& scene, const std::string& pass,
-                       bool final_image, bool coverage);
+// <scene>.<image>.png for another graded image (<image> is the pass, or pass.attachment when
+// its target has several), ".hdr" instead of ".png" for images compared in the hdr range, and
+// ".coverage.png" for the coverage mask.
+std::string goldenPath(const std::string& lab_dir, const std::string& scene, const std::string& image,
+                       bool final_image, bool coverage, bool hdr = false);
 
 // Renders the reference solution of each lab and writes its goldens. Returns error messages.
 std::vector<std::string> writeGoldens(const std::string& reference_root, const std::string& labs_root,

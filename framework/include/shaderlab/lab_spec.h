@@ -1,35 +1,99 @@
-// The typed form of a lab's `lab.json` (documented field by field in docs/lab-format.md).
+// The typed form of a lab's `lab.json` (schema 2; documented field by field in
+// docs/lab-format.md, and as a JSON Schema in docs/lab.schema.json).
 // parseLabSpec() reads and validates; every message names the file and the JSON path of the
-// field at fault ("labs/01-phong/lab.json: passes[0].state.cull: expected one of \"back\", \"front\",
-// \"none\", got \"sideways\""). The framework executes a LabSpec and never looks at a lab's id.
+// field at fault ("labs/01-phong/lab.json: passes[0].state.cull: expected one of \"back\",
+// \"front\", \"none\", got \"sideways\""). The framework executes a LabSpec and never looks at a
+// lab's id.
 #pragma once
 
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
 namespace shaderlab {
 
-// A uniform value given in lab.json: a JSON number is a float, a JSON integer is still a float
-// unless the spec says {"int": 3}; arrays of 2/3/4 numbers are vec2/3/4, 9/16 are mat3/mat4
-// (column-major, as GLSL). {"bool": true} is a bool.
-using UniformValue = std::variant<float, int, bool, glm::vec2, glm::vec3, glm::vec4, glm::mat3, glm::mat4>;
-using UniformMap = std::map<std::string, UniformValue>;
+// A uniform value as lab.json gives it. Its GLSL type comes from the program that receives it
+// (a JSON 3 sets an int, a float or a uint, whatever the shader declares), so it stays JSON
+// until the program is linked; `path` names it in messages ("passes[0].uniforms.u_levels").
+struct UniformSetting {
+    std::string name;
+    nlohmann::json value;
+    std::string path;
+};
+using UniformList = std::vector<UniformSetting>;
 
-enum class TargetFormat { RGBA8, RGBA16F, RGBA32F };
-enum class CullMode { None, Back, Front };
-enum class PolygonMode { Fill, Line };
-enum class BlendMode { None, Alpha, Additive };
-enum class DepthFunc { Less, LessEqual, Always };
-enum class DrawKind { Scene, Fullscreen };
-enum class TextureFilter { Nearest, Linear };
+enum class TargetFormat { RGBA8, SRGB8, RGBA16F, RGBA32F };
+enum class TargetType { Texture2D, Cube };
+enum class DepthMode { None, Buffer, Texture };
+enum class TextureFilter { Nearest, Linear, Mipmap };
 enum class TextureWrap { ClampToEdge, Repeat, MirroredRepeat };
+enum class CullMode { None, Back, Front };
+enum class PolygonMode { Fill, Line, Point };
+enum class BlendMode { None, Alpha, Additive, Premultiplied };
+enum class DepthFunc { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
+enum class DrawKind { Scene, Fullscreen, Procedural };
+enum class Primitive { Points, Lines, LineStrip, Triangles, TriangleStrip };
+// How a graded image is compared: as displayed (clamped to 0..1, 8 bits) or with values above 1
+// kept (high dynamic range, for intermediate float passes such as a bloom's bright pass).
+enum class CompareMode { Display, Hdr };
+enum class Projection { Perspective, Orthographic };
 
+bool isFloatFormat(TargetFormat f);
+
+// A render target: colour attachments of one format and size, and optionally depth.
+struct TargetSpec {
+    std::string name;
+    TargetFormat format = TargetFormat::RGBA32F;
+    TargetType type = TargetType::Texture2D;
+    int width = 0, height = 0;  // pixels: `size`, or `scale` times the lab resolution (parser)
+    float scale = 1.0f;
+    std::vector<std::string> attachments{"color"};  // colour attachment names, location order
+    DepthMode depth = DepthMode::Buffer;
+    TextureFilter filter = TextureFilter::Linear;  // how passes sample it unless an input says
+    TextureWrap wrap = TextureWrap::ClampToEdge;
+    std::string path;  // where lab.json declares it
+};
+
+// A texture made by the framework instead of read from a file.
+struct GeneratedTexture {
+    std::string pattern;  // "checker" | "gradient" | "noise" | "constant"
+    int width = 1, height = 1, depth = 1;
+    std::vector<glm::vec4> colors;  // checker: two; gradient: two or more stops; constant: one
+    int cells = 8;                  // checker squares per side
+    std::uint32_t seed = 1;         // noise
+};
+
+enum class InputSource { Target, File, Cube, Generated };
+
+// One sampler of a pass and what feeds it. Its texture type (1D, 2D, 3D, cube, shadow) comes from
+// the sampler type the program declares, checked against the source when the program is linked.
+struct PassInput {
+    std::string sampler;  // GLSL uniform name
+    InputSource source = InputSource::Target;
+    std::string target;                   // Target: target name
+    std::string attachment;               // Target: colour attachment name or "depth"
+    std::string file;                     // File: path (lab folder, or shared/...)
+    std::vector<std::string> cube_files;  // Cube: +x, -x, +y, -y, +z, -z
+    int layers = 0;                       // File as a sampler3D: slices stacked top to bottom
+    GeneratedTexture generated;
+    std::optional<TextureFilter> filter;  // default: the target's, or linear
+    std::optional<TextureWrap> wrap;      // default: the target's, or clamp
+    bool srgb = false;                    // files and generated textures: decode sRGB when sampling
+    std::string path;
+};
+
+struct ProgramSpec {
+    std::string vertex;    // path relative to the lab folder, or shared/... for the course's
+    std::string fragment;  // shared folder (labs/shared/)
+};
+
+// Per-attachment clears are resolved by the parser: one entry per attachment of the target.
 struct RenderState {
-    std::optional<glm::vec4> clear_color = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);  // nullopt: no clear
+    std::vector<std::optional<glm::vec4>> clear_colors;  // nullopt: keep what is there
     bool clear_depth = true;
     bool depth_test = true;
     bool depth_write = true;
@@ -37,53 +101,53 @@ struct RenderState {
     CullMode cull = CullMode::Back;
     PolygonMode polygon_mode = PolygonMode::Fill;
     float line_width = 1.0f;
+    float point_size = 1.0f;  // when the vertex stage does not write gl_PointSize
     BlendMode blend = BlendMode::None;
 };
 
-// Where a pass's colour target lives. Size: explicit pixels, or a scale of the lab resolution.
-struct TargetSpec {
-    std::string name;  // what later passes call it; defaults to the pass name
-    TargetFormat format = TargetFormat::RGBA32F;
-    int width = 0, height = 0;  // 0: use scale * lab resolution
-    float scale = 1.0f;
-    TextureFilter filter = TextureFilter::Linear;  // how later passes sample it
-    TextureWrap wrap = TextureWrap::ClampToEdge;
+// Camera fields a scene or a pass replaces; unset ones keep the file's (or the scene's).
+struct CameraOverride {
+    std::optional<glm::vec3> position, target, up;
+    std::optional<float> fov_y_deg, z_near, z_far;
+    std::optional<Projection> projection;
+    std::optional<float> height;  // orthographic: visible height in world units
+    std::optional<int> light;     // look from the scene's light of this index
+    bool any() const;
 };
 
-// A sampler uniform fed by an earlier pass's target or by an image file of the lab.
-struct PassInput {
-    std::string sampler;                  // GLSL uniform name, e.g. "u_scene"
-    std::string from_pass;                // target name of an earlier pass, or empty
-    std::string texture_file;             // path relative to the lab folder, or empty (exactly one is set)
-    std::optional<TextureFilter> filter;  // overrides the target's filter
-    std::optional<TextureWrap> wrap;
-};
-
-struct ProgramSpec {
-    std::string vertex;    // path relative to the lab folder, e.g. "phong.vert"
-    std::string fragment;  // e.g. "phong.frag"
+struct GradingThresholds {
+    float psnr_min_db = 30.0f;
+    float ssim_min = 0.95f;
+    float flip_mean_max = 0.05f;
+    float mismatch_max = 0.01f;     // fraction of covered pixels
+    float pixel_tolerance = 0.05f;  // per-channel tolerance of the shift-tolerant comparison
 };
 
 struct PassSpec {
     std::string name;
     ProgramSpec program;
     DrawKind draw = DrawKind::Scene;
+    Primitive primitive = Primitive::Triangles;  // procedural draws
+    int vertex_count = 0;                        // procedural draws: gl_VertexID runs 0..count-1
+    std::string target;                          // name of a LabSpec::targets entry
     std::vector<PassInput> inputs;
-    TargetSpec target;
     RenderState state;
-    UniformMap uniforms;
-    // Whether the grader compares this pass's output. The last pass is always graded; earlier
-    // passes of a multi-pass lab may be compared too, to name the first one that goes wrong.
-    bool graded = false;
-    // When set, this pass draws over another pass's target instead of owning one (its `target`
-    // is then ignored): e.g. an outline pass drawn into the shaded scene.
-    std::string draw_into;
+    UniformList uniforms;
+    CameraOverride camera;
+    // Graded colour attachments (and "depth"), empty when the pass is not graded.
+    std::vector<std::string> graded;
+    CompareMode compare = CompareMode::Display;
+    GradingThresholds thresholds;  // the lab's, with this pass's overrides
+    int loop = -1;                 // index into LabSpec::loops, -1 outside any loop
+    std::string path;
 };
 
-// Camera overrides for a graded scene; unset fields keep the glTF camera's.
-struct CameraOverride {
-    std::optional<glm::vec3> position, target, up;
-    std::optional<float> fov_y_deg, z_near, z_far;
+// Passes first..last (indices into LabSpec::passes) run `count` times in a row; a scene may
+// change the count.
+struct LoopSpec {
+    std::size_t first = 0, last = 0;
+    int count = 1;
+    std::string declared_by;  // the pass whose `repeat` made the loop
 };
 
 struct LightSpec {
@@ -95,34 +159,50 @@ struct LightSpec {
 };
 
 struct SceneSpec {
-    std::string name;  // unique within the lab; names output images
-    std::string file;  // glTF path relative to the labs root (e.g. "scenes/sphere.gltf")
+    std::string name;       // unique within the lab; names output images ("spin_t1" for times)
+    std::string base_name;  // the name lab.json gives (equal to name unless `times` expanded it)
+    std::string file;       // glTF path relative to the labs root; empty for labs without scene draws
     CameraOverride camera;
     std::optional<std::vector<LightSpec>> lights;  // replaces the file's lights when set
-    UniformMap uniforms;                           // per-scene uniform overrides
+    UniformList uniforms;                          // per-scene uniform overrides
     float time = 0.0f;                             // value of u_time
+    std::map<std::string, int> repeats;            // loop count overrides, by declaring pass
+    std::string path;
+};
+
+// What a lab teaches, and what earns its points: a goal is met when every graded image of its
+// scenes and passes passes.
+struct GoalSpec {
+    std::string id;
+    std::string title;
+    float points = 1.0f;
+    std::vector<std::string> scenes;  // expanded scene names
+    std::vector<std::string> passes;  // graded pass names
+    bool implicit = false;            // made by the parser for a lab without goals (one per scene)
 };
 
 struct GradingSpec {
-    float points = 10.0f;       // the lab's maximum score, split evenly over scenes
-    float psnr_min_db = 30.0f;  // a scene passes when every threshold holds
-    float ssim_min = 0.95f;
-    float flip_mean_max = 0.05f;
-    float mismatch_max = 0.01f;     // fraction of covered pixels
-    float pixel_tolerance = 0.05f;  // per-channel tolerance of the shift-tolerant comparison
+    float points = 10.0f;  // the lab's maximum score: the sum of its goals' points
+    GradingThresholds thresholds;
 };
 
 struct LabSpec {
-    int schema = 1;
+    int schema = 2;
     std::string id;  // equals the lab folder's name, e.g. "01-phong"
     std::string title;
     std::string lab_dir;                     // absolute path of the lab folder (filled by the parser)
     std::string labs_root;                   // its parent, where scene paths are resolved
     int width = 256, height = 256;           // lab resolution
     std::vector<std::string> student_files;  // files a submission provides, e.g. phong.vert
+    std::vector<TargetSpec> targets;
     std::vector<PassSpec> passes;
+    std::vector<LoopSpec> loops;
     std::vector<SceneSpec> scenes;
+    std::vector<GoalSpec> goals;
     GradingSpec grading;
+
+    const TargetSpec* findTarget(const std::string& name) const;
+    const PassSpec* findPass(const std::string& name) const;
 };
 
 struct LabSpecResult {
@@ -131,12 +211,22 @@ struct LabSpecResult {
     LabSpec spec;
 };
 
-// Reads `<lab_dir>/lab.json` and validates it (field types and ranges, unique pass and scene
-// names, inputs referring only to earlier passes, files existing inside the lab folder, the
-// id matching the folder name).
+// Reads `<lab_dir>/lab.json` and validates it: first against the JSON Schema (field types,
+// ranges, names, unknown keys), then what a schema cannot say (references between passes,
+// targets, scenes and goals; cycles; files on disk; the id matching the folder).
 LabSpecResult parseLabSpec(const std::string& lab_dir);
 // Same, from text already in memory; `origin` names it in messages and `lab_dir` resolves paths.
 LabSpecResult parseLabSpecText(const std::string& json_text, const std::string& origin,
                                const std::string& lab_dir);
+
+// The JSON Schema of lab.json (docs/lab.schema.json, compiled in).
+const std::string& labSchemaText();
+
+// The course's shared folder for a labs root: <labs_root>/shared. Paths in lab.json that start
+// with "shared/" name files there.
+std::string sharedFolder(const std::string& labs_root);
+// Where a lab file named in lab.json lives: <labs_root>/<path> for shared/..., else
+// <lab_dir>/<path>.
+std::string labFilePath(const LabSpec& spec, const std::string& path);
 
 }  // namespace shaderlab

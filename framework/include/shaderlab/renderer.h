@@ -1,8 +1,8 @@
-// Executes a LabSpec: for every graded scene, runs the lab's passes in order on the current GL
-// context and reads back the graded passes' float targets. The same code path serves headless
-// grading and (later) the student's window: it only needs a current context.
-// It does not judge images (grader/ does) and does not isolate untrusted code: the caller runs
-// it in a child process when the shaders are a submission's.
+// Executes a LabSpec: for every graded scene, runs the lab's passes in order (repeat groups as
+// often as asked) on the current GL context and reads back the graded passes' float targets. The same code
+// path serves headless grading and (later) the student's window: it only needs a current context. It does not
+// judge images (grader/ does) and does not isolate untrusted code: the caller runs it in a child process when
+// the shaders are a submission's.
 #pragma once
 
 #include <memory>
@@ -22,16 +22,23 @@ enum class RenderStatus { Ok, Missing, CompileError, LinkError, RenderError };
 const char* renderStatusName(RenderStatus status);
 
 struct PassImage {
-    std::string pass;    // pass name
-    std::string target;  // target name
+    std::string pass;        // pass name
+    std::string target;      // target name
+    std::string attachment;  // colour attachment name, or "depth"
     bool graded = false;
-    grader::Image color;                 // RGBA float, top row first, NaN/Inf preserved
-    std::vector<std::uint8_t> coverage;  // 1 where scene geometry wrote depth; all 1 for fullscreen
+    // RGBA float, top row first, NaN/Inf preserved. A cube target's six faces side by side
+    // (+x, -x, +y, -y, +z, -z); depth as grey.
+    grader::Image color;
+    // 1 where geometry wrote depth; all 1 when a fullscreen pass drew into the target (or it
+    // has no depth).
+    std::vector<std::uint8_t> coverage;
 };
 
 struct SceneRender {
     std::string scene;
-    std::vector<PassImage> passes;  // graded passes, in pass order (the last one is the final image)
+    // Graded images, in pass order and attachment order (the last one is the final image);
+    // every pass's when RenderOptions::keep_all_passes.
+    std::vector<PassImage> passes;
     double render_ms = 0.0;
 };
 

@@ -45,6 +45,8 @@ struct Camera {
     float z_far = 100.0f;
     // When non-zero, the aspect ratio stored in the file; the renderer uses the target's aspect.
     float file_aspect = 0.0f;
+    bool orthographic = false;
+    float ortho_height = 2.0f;  // orthographic: the visible height in world units
 };
 
 enum class LightType { Directional, Point, Spot };

@@ -1,40 +1,53 @@
 // Compiles and links the student's GLSL, keeping compile and link logs as structured data.
 // The framework injects a small prelude after the student's `#version` line (or a default
 // `#version 330 core` when there is none) followed by a `#line` directive, so the driver's line
-// numbers are the student's own; diagnostics carry the student's file name, not the driver's
-// source-string number. This file does not decide what a failure is worth: the grader does.
+// numbers are the student's own. `#include "file"` lines are replaced by the file's text between
+// `#line` directives that give each included file its own source-string number, so diagnostics
+// name the file a line belongs to. This file does not decide what a failure is worth: the grader
+// does.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
-#include "shaderlab/lab_spec.h"
+#include "shaderlab/paths.h"
 
 namespace shaderlab {
 
 struct Diagnostic {
     std::string file;      // the student's file as named in lab.json, e.g. "phong.frag"
-    int line = 0;          // 1-based, in the student's file; 0 when the driver gave none
+    int line = 0;          // 1-based, in that file; 0 when the driver gave none
     int column = 0;        // 0 when unknown
     std::string severity;  // "error" or "warning"
     std::string message;
 };
 
+// Reads the file an `#include "name"` in `includer` names (a FileText with ok = false and an
+// error when it cannot). Empty: includes are refused.
+using IncludeReader = std::function<FileText(const std::string& includer, const std::string& name)>;
+
 // GLSL text as handed to the driver, and where the student's first line landed.
 struct PreparedSource {
     std::string text;
     int first_student_line = 1;
+    std::vector<std::string> files;  // by source-string number: [0] the file itself, then includes
+    std::vector<Diagnostic> errors;  // includes that could not be read (or nest too deep)
 };
 
 // Inserts the prelude after the `#version` directive (keeping the student's version) and a
-// `#line` so that line numbers in the driver's log match the student's file.
-PreparedSource prepareSource(const std::string& student_text, const std::string& prelude);
+// `#line` so that line numbers in the driver's log match the student's file, and expands
+// `#include "name"` lines (at most 16 levels, each file once) with `includes`.
+PreparedSource prepareSource(const std::string& student_text, const std::string& prelude,
+                             const std::string& file = "", const IncludeReader& includes = {});
 
 // Parses a driver info log (Mesa "0:12(5): error: ...", NVIDIA "0(12) : error C1008: ...",
-// "ERROR: 0:12: ...") into diagnostics attributed to `file`. Lines it cannot parse become
-// diagnostics with line 0 so nothing the driver said is lost.
+// "ERROR: 0:12: ...") into diagnostics. The leading source-string number picks the file from
+// `files` (the first one when out of range). Lines it cannot parse become diagnostics with line
+// 0 so nothing the driver said is lost.
+std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<std::string>& files);
 std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& file);
 
 struct StageLog {
@@ -46,9 +59,21 @@ struct StageLog {
 };
 
 struct UniformSlot {
+    std::string name;  // without the "[0]" GL adds to arrays
     int location = -1;
     unsigned type = 0;  // GL type enum
     int size = 1;       // array length
+};
+
+struct FragmentOutput {
+    std::string name;
+    int location = -1;
+};
+
+struct StageSource {
+    std::string file;
+    std::string text;
+    IncludeReader includes;
 };
 
 class ShaderProgram {
@@ -60,8 +85,11 @@ class ShaderProgram {
     ShaderProgram(ShaderProgram&& other) noexcept;
     ShaderProgram& operator=(ShaderProgram&& other) noexcept;
 
-    // Builds from two prepared sources. Returns false on a compile or link error; logs and
-    // diagnostics are filled either way (warnings too).
+    // Builds from two sources. Fragment outputs named `o_<attachment>` or `<attachment>` are bound
+    // to that attachment's location before linking. Returns false on a compile or link error;
+    // logs and diagnostics are filled either way (warnings too).
+    bool build(const StageSource& vertex, const StageSource& fragment,
+               const std::vector<std::string>& attachments = {"color"});
     bool build(const std::string& vertex_file, const std::string& vertex_text,
                const std::string& fragment_file, const std::string& fragment_text);
 
@@ -71,23 +99,44 @@ class ShaderProgram {
     const std::vector<StageLog>& stages() const { return stages_; }
     const std::string& linkLog() const { return link_log_; }
     const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+    // The text each stage was compiled from (prelude and includes expanded).
+    const std::string& preparedText(int stage) const { return prepared_[stage == 0 ? 0 : 1]; }
 
     // Active uniforms by name, without the "[0]" GL adds to arrays.
     const UniformSlot* uniform(const std::string& name) const;
-    // Sets a lab.json value; returns a message when the shader declares another type.
-    std::string set(const std::string& name, const UniformValue& value) const;
+    const std::vector<UniformSlot>& uniforms() const { return uniform_list_; }
+    // Active fragment outputs (needs OpenGL 4.3 program interface queries; empty before that).
+    const std::vector<FragmentOutput>& outputs() const { return outputs_; }
+    bool outputsKnown() const { return outputs_known_; }
+    // Sets every non-sampler uniform back to the value it had right after linking (its GLSL
+    // initialiser, or zero), so no value of one pass leaks into the next pass using the program.
+    void restoreDefaults() const;
 
   private:
     void release();
+    void snapshotDefaults();
     unsigned program_ = 0;
-    bool compiled_ = false, linked_ = false;
+    bool compiled_ = false, linked_ = false, outputs_known_ = false;
     std::vector<StageLog> stages_;
     std::string link_log_;
     std::vector<Diagnostic> diagnostics_;
-    std::map<std::string, UniformSlot> uniforms_;
+    std::map<std::string, std::size_t> uniform_index_;
+    std::vector<UniformSlot> uniform_list_;
+    std::vector<FragmentOutput> outputs_;
+    std::string prepared_[2];
+    struct Default {
+        int location;
+        unsigned type;
+        int count;
+        std::vector<std::uint32_t> bits;  // raw 32-bit words of the values
+    };
+    std::vector<Default> defaults_;
 };
 
 // The default prelude: defines a submission may test for.
 std::string defaultPrelude();
+
+// GLSL's name of a GL type enum ("vec3", "sampler2DShadow"), or "another type".
+const char* glslTypeName(unsigned type);
 
 }  // namespace shaderlab

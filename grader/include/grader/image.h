@@ -29,9 +29,17 @@ struct Image {
     float at(int x, int y, int c = 0) const { return pixels[index(x, y, c)]; }
 };
 
+// Images larger than this are refused before any pixel is decoded (a 74-byte PNG can claim
+// 16000x16000 pixels).
+constexpr std::size_t kMaxImagePixels = std::size_t{4096} * 4096;
+
 // Writes 8-bit PNG: each channel clamped to [0,1], NaN written as 0, scaled by 255 and rounded.
 bool writePng(const Image& image, const std::string& path, std::string* error);
 // Reads an 8-bit or 16-bit PNG into [0,1] floats, keeping its channel count (grey+alpha becomes 4).
 bool readPng(const std::string& path, Image* image, std::string* error);
+// Radiance RGBE (.hdr), for float images with values above 1: RGB kept to 8-bit mantissas with a
+// shared exponent; NaN, Inf and negative values are written as 0. Read back as RGBA, alpha 1.
+bool writeHdr(const Image& image, const std::string& path, std::string* error);
+bool readHdr(const std::string& path, Image* image, std::string* error);
 
 }  // namespace grader

@@ -10,7 +10,7 @@
 
 namespace grader {
 
-constexpr int kReportSchemaVersion = 1;
+constexpr int kReportSchemaVersion = 2;
 
 // The closed set of lab and scene statuses.
 //   passed, failed: rendered and judged; compile_error, link_error: the shaders did not build;
@@ -25,7 +25,8 @@ struct ReportDiagnostic {
 };
 
 struct ReportMetrics {
-    double psnr_db = 0.0;  // +infinity allowed; written as null with "identical": true
+    double psnr_db = 0.0;      // +infinity allowed; written as null with "identical": true
+    bool ssim_defined = true;  // false: the image is smaller than SSIM's window; written as null
     double ssim = 0.0;
     double flip_mean = 0.0;
     double flip_weighted_median = 0.0;
@@ -35,8 +36,13 @@ struct ReportMetrics {
     std::size_t pixel_count = 0;
 };
 
+// One graded image of a scene: a pass's attachment (most passes have one, named by the pass).
 struct ReportPass {
-    std::string name;
+    std::string name;        // "shade", or "gbuffer.normal" for one attachment of several
+    std::string pass;        // the pass
+    std::string attachment;  // its attachment ("color", "depth", ...)
+    std::string range;       // "display" or "hdr" (how values were compared; docs/grading.md)
+    double hdr_scale = 1.0;  // hdr: what both images were divided by
     bool passed = false;
     ReportMetrics metrics;
     std::vector<std::string> reasons;
@@ -54,8 +60,16 @@ struct ReportScene {
     PixelBox worst_region;
     PixelBox non_finite_box;
     std::string student_image, reference_image, diff_image;
-    std::vector<ReportPass> passes;  // every graded pass, in order (the last is the final image)
+    std::vector<ReportPass> passes;  // every graded image, in order (the last is the final image)
     double render_ms = 0.0;
+};
+
+// A learning goal of the lab: met when every graded image of its scenes and passes passed.
+struct ReportGoal {
+    std::string id, title;
+    double points = 0.0;  // what meeting it earns
+    bool met = false;
+    std::vector<std::string> failing;  // "<scene>/<pass>" checks that failed, in order
 };
 
 struct ReportLab {
@@ -65,6 +79,7 @@ struct ReportLab {
     std::string message;
     std::string reference_source;  // "reference_solutions" or "goldens"
     std::vector<ReportDiagnostic> diagnostics;
+    std::vector<ReportGoal> goals;  // empty when the lab did not render
     std::vector<ReportScene> scenes;
     double wall_ms = 0.0;
 };

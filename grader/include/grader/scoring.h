@@ -26,8 +26,17 @@ struct Thresholds {
     float pixel_tolerance = 0.05f;
 };
 
+// How pixel values are brought into the 0..1 range the metrics expect.
+//   Display: as the PNG shows them: clamped to 0..1 and rounded to 8 bits.
+//   Hdr:     values above 1 kept (an intermediate float pass, such as a bloom's bright pass):
+//            both images are rounded as Radiance RGBE stores them (Ward, "Real Pixels",
+//            Graphics Gems II, 1991; 8-bit mantissas, shared exponent), then divided by the
+//            reference's largest value when that exceeds 1. Negative values count as 0.
+enum class ImageRange { Display, Hdr };
+
 struct MetricSet {
-    double psnr_db = 0.0;  // +infinity for identical images
+    double psnr_db = 0.0;      // +infinity for identical images
+    bool ssim_defined = true;  // false when the image is smaller than SSIM's 11x11 window
     double ssim = 0.0;
     double flip_mean = 0.0;
     double flip_weighted_median = 0.0;
@@ -47,7 +56,8 @@ struct ImageVerdict {
     MetricSet frame;    // whole frame, reported for information
     std::size_t covered_pixels = 0;
     WorstRegion worst;                     // of the shift-tolerant comparison over covered pixels
-    int checks_met = 0, checks_total = 4;  // of psnr, ssim, flip, mismatch
+    int checks_met = 0, checks_total = 4;  // of psnr, ssim (when defined), flip, mismatch
+    double hdr_scale = 1.0;                // Hdr: what both images were divided by
     // For the diff picture: FLIP error per pixel (whole frame) and the mismatching pixels.
     std::vector<float> flip_map;
     Mask mismatches;
@@ -55,14 +65,13 @@ struct ImageVerdict {
 
 // Rounds every channel to the nearest of 256 levels in [0, 1] (NaN becomes 0), as writePng.
 Image quantise8(const Image& image);
+// RGB as an RGBE file stores it (NaN, Inf and negative values become 0); alpha is kept. The
+// result reads back unchanged from writeHdr/readHdr.
+Image rgbeRoundTrip(const Image& image);
 
 // `reference_coverage` / `test_coverage`: 1 where geometry was drawn (empty: everything).
 ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>& reference_coverage,
                         const Image& test, const std::vector<std::uint8_t>& test_coverage,
-                        const Thresholds& thresholds);
-
-// Points for a scene worth `max_points`: all of them when it passed; otherwise half of them
-// times the share of the four metric checks it met; none with NaN/Inf (docs/grading.md).
-double scenePoints(const ImageVerdict& verdict, double max_points);
+                        const Thresholds& thresholds, ImageRange range = ImageRange::Display);
 
 }  // namespace grader
