@@ -59,4 +59,14 @@ struct GoldensArgs {
 };
 int runGoldens(const GoldensArgs& args);
 
+struct CorpusArgs {
+    CommonOptions common;
+    std::string corpus_root;     // empty: tests/corpus beside the labs folder
+    std::string reference_root;  // empty: reference_solutions beside the labs folder
+    std::string out_dir;
+    bool use_reference = false;  // render the reference instead of reading the goldens
+    double timeout_s = 10.0;
+};
+int runCorpus(const CorpusArgs& args);
+
 }  // namespace shaderlab::cli

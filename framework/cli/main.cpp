@@ -75,6 +75,20 @@ int main(int argc, char** argv) {
                             "write to DIR/<lab>/golden/ instead of the labs (to compare)");
     add_common(goldens_cmd, &goldens.common);
 
+    CorpusArgs corpus;
+    CLI::App* corpus_cmd = app.add_subcommand(
+        "corpus", "grade each lab's known mistakes and alternative solutions and check the verdicts");
+    corpus_cmd->add_option("--corpus", corpus.corpus_root,
+                           "folder of <lab>/cases.json (default: tests/corpus)");
+    corpus_cmd->add_option("--reference", corpus.reference_root, "reference solutions folder");
+    corpus_cmd->add_option("--out", corpus.out_dir, "output folder")->required();
+    corpus_cmd->add_flag("--render-reference", corpus.use_reference,
+                         "render the reference for every case instead of reading the goldens");
+    corpus_cmd->add_option("--timeout", corpus.timeout_s, "seconds one case may take to render")
+        ->check(CLI::Range(0.1, 600.0))
+        ->capture_default_str();
+    add_common(corpus_cmd, &corpus.common);
+
     std::string info_backend = "osmesa";
     CLI::App* info_cmd = app.add_subcommand("info", "print the OpenGL context a backend gives");
     info_cmd->add_option("--backend", info_backend)->check(CLI::IsMember({"osmesa", "egl"}));
@@ -92,5 +106,6 @@ int main(int argc, char** argv) {
     if (check_cmd->parsed()) return runCheck(check);
     if (compare_cmd->parsed()) return runCompare(compare);
     if (goldens_cmd->parsed()) return runGoldens(goldens);
+    if (corpus_cmd->parsed()) return runCorpus(corpus);
     return 2;
 }

@@ -1,5 +1,5 @@
 // JSON Schema validation with valijson, worded for people; see json_schema_check.h.
-#include "json_schema_check.h"
+#include "shaderlab/json_schema_check.h"
 
 #include <algorithm>
 #include <cmath>

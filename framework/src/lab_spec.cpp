@@ -27,7 +27,7 @@
 #include <utility>
 
 #include "json_messages.h"
-#include "json_schema_check.h"
+#include "shaderlab/json_schema_check.h"
 #include "shaderlab/paths.h"
 
 namespace shaderlab {
@@ -887,7 +887,11 @@ class Validator {
                     continue;
                 }
                 if (in.attachment == "depth") {
-                    if (t->depth != DepthMode::Texture)
+                    if (in.target == p.target)
+                        diag_.error(in.path,
+                                    "reads the depth of the target this pass draws into; depth is not "
+                                    "ping-ponged, so draw the depth in an earlier pass");
+                    else if (t->depth != DepthMode::Texture)
                         diag_.error(in.path,
                                     "reads the depth of target " + quoteJson(t->name) +
                                         ", which cannot be sampled: give the target \"depth\": \"texture\"");
@@ -1104,6 +1108,25 @@ class Validator {
             covered.insert(g.scenes.begin(), g.scenes.end());
         }
         spec_.grading.points = total;
+        // Every graded image counts toward some goal: otherwise a lab could fail with full marks.
+        for (const std::string& pass : graded) {
+            std::vector<std::string> unchecked;
+            for (const SceneSpec& s : spec_.scenes) {
+                const bool checked =
+                    std::any_of(spec_.goals.begin(), spec_.goals.end(), [&](const GoalSpec& g) {
+                        return std::find(g.scenes.begin(), g.scenes.end(), s.name) != g.scenes.end() &&
+                               std::find(g.passes.begin(), g.passes.end(), pass) != g.passes.end();
+                    });
+                if (!checked && covered.count(s.name)) unchecked.push_back(s.name);
+            }
+            if (!unchecked.empty()) {
+                std::string list;
+                for (const std::string& n : unchecked) list += (list.empty() ? "" : ", ") + quoteJson(n);
+                diag_.error(spec_.findPass(pass)->path + ".graded",
+                            "pass " + quoteJson(pass) + " is graded, but no goal checks it in scene " + list +
+                                "; add it to a goal's \"passes\" or stop grading it");
+            }
+        }
         std::set<std::string> reported;
         for (const SceneSpec& s : spec_.scenes) {
             const std::string base = s.path.substr(0, s.path.find(".times"));

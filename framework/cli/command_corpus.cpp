@@ -1,0 +1,335 @@
+// `shaderlab corpus`: proves that each lab's grade follows its learning goals. For every lab with
+// a corpus folder (tests/corpus/<lab>/cases.json), it grades the reference solution (full marks),
+// the starter code (renders, fails), and every case: a mistake a student makes (must fail, with
+// the goals it names not met), a correct solution written differently (must pass with full
+// marks), or a broken submission (must end with the status it names). A case folder holds only
+// the files that differ from the reference solution. Grading uses the stored goldens unless
+// --reference is given. Exit 0 when every expectation holds, 1 when one does not, 2 when the
+// corpus cannot be read.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "commands.h"
+#include "grader/report.h"
+#include "shaderlab/grading.h"
+#include "shaderlab/json_schema_check.h"
+#include "shaderlab/lab_catalog.h"
+#include "shaderlab/lab_spec.h"
+#include "shaderlab/paths.h"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace shaderlab::cli {
+
+namespace {
+
+// What cases.json may say; checked with the same schema machinery as lab.json.
+const char* const kCasesSchema = R"({
+  "type": "object", "additionalProperties": false, "required": ["lab", "cases"],
+  "properties": {
+    "$comment": { "type": "string" },
+    "lab": { "type": "string", "pattern": "^[A-Za-z0-9_-]{1,64}$" },
+    "cases": {
+      "type": "array", "minItems": 1,
+      "items": {
+        "type": "object", "additionalProperties": false, "required": ["name", "kind", "about"],
+        "properties": {
+          "name": { "type": "string", "pattern": "^[A-Za-z0-9_-]{1,64}$", "x-expected": "a folder name" },
+          "kind": { "enum": ["mistake", "alternative", "broken"] },
+          "about": { "type": "string", "minLength": 1 },
+          "fails": { "type": "array", "minItems": 1, "items": { "type": "string" } },
+          "keeps": { "type": "array", "minItems": 1, "items": { "type": "string" } },
+          "status": { "enum": ["failed", "compile_error", "link_error", "missing", "timeout", "crashed"] },
+          "diagnostic": {
+            "type": "object", "additionalProperties": false, "required": ["file", "line"],
+            "properties": { "file": { "type": "string" }, "line": { "type": "integer", "minimum": 0 } }
+          },
+          "delete": { "type": "array", "minItems": 1, "items": { "type": "string" } },
+          "timeout": { "type": "number", "exclusiveMinimum": 0, "maximum": 600 }
+        }
+      }
+    }
+  }
+})";
+
+struct Case {
+    std::string name, kind, about, status;
+    std::vector<std::string> fails, keeps, remove;
+    std::optional<std::pair<std::string, int>> diagnostic;
+    double timeout_s = 0.0;
+};
+
+struct Outcome {
+    std::string lab, name, kind, about;
+    std::string status;
+    double score = 0.0, max_score = 0.0;
+    std::vector<std::string> goals_failed;
+    bool ok = false;
+    std::string why;  // when !ok: the expectation that did not hold
+    std::string report;
+};
+
+bool loadCases(const fs::path& file, const LabSpec& spec, std::vector<Case>* out,
+               std::vector<std::string>* errors) {
+    const FileText t = readFile(file.string(), 1u << 20);
+    if (!t.ok) {
+        errors->push_back(file.string() + ": " + t.error);
+        return false;
+    }
+    const json doc = json::parse(t.text, nullptr, false);
+    if (doc.is_discarded()) {
+        errors->push_back(file.string() + ": not valid JSON");
+        return false;
+    }
+    static const json schema = json::parse(kCasesSchema);
+    static const JsonSchemaChecker checker(schema);
+    for (const SchemaProblem& p : checker.check(doc))
+        errors->push_back(file.string() + ": " + (p.path.empty() ? "" : p.path + ": ") + p.problem);
+    if (!errors->empty()) return false;
+    if (doc["lab"] != spec.id)
+        errors->push_back(file.string() + ": lab: is " + doc["lab"].dump() + ", not " + spec.id);
+    std::vector<std::string> goal_ids;
+    for (const GoalSpec& g : spec.goals) goal_ids.push_back(g.id);
+    const json& cases = doc["cases"];
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const json& c = cases[i];
+        const std::string path = file.string() + ": cases[" + std::to_string(i) + "]";
+        Case k;
+        k.name = c["name"];
+        k.kind = c["kind"];
+        k.about = c["about"];
+        k.status = c.value("status", k.kind == "mistake"       ? "failed"
+                                     : k.kind == "alternative" ? "passed"
+                                                               : "");
+        if (c.contains("fails")) k.fails = c["fails"].get<std::vector<std::string>>();
+        if (c.contains("keeps")) k.keeps = c["keeps"].get<std::vector<std::string>>();
+        if (c.contains("delete")) k.remove = c["delete"].get<std::vector<std::string>>();
+        if (c.contains("diagnostic")) k.diagnostic = {{c["diagnostic"]["file"], c["diagnostic"]["line"]}};
+        k.timeout_s = c.value("timeout", 0.0);
+        if (k.kind == "mistake" && k.fails.empty())
+            errors->push_back(path + ".fails: a mistake names the goals it must fail (its learning goal)");
+        if (k.kind == "broken" && !c.contains("status"))
+            errors->push_back(path + ".status: a broken case names the status it must end with");
+        if (k.kind == "alternative" && (c.contains("fails") || c.contains("status")))
+            errors->push_back(path + ": an alternative must pass; it has no \"fails\" or \"status\"");
+        for (const auto* list : {&k.fails, &k.keeps})
+            for (const std::string& g : *list)
+                if (std::find(goal_ids.begin(), goal_ids.end(), g) == goal_ids.end())
+                    errors->push_back(path + ": " + spec.id + " has no goal \"" + g + "\"");
+        std::error_code ec;
+        if (!fs::is_directory(file.parent_path() / k.name, ec) && k.remove.empty())
+            errors->push_back(path + ": no folder " + (file.parent_path() / k.name).string());
+        for (const Case& other : *out)
+            if (other.name == k.name) errors->push_back(path + ".name: \"" + k.name + "\" is listed twice");
+        out->push_back(std::move(k));
+    }
+    return errors->empty();
+}
+
+// A submission folder for one case: the reference's student files, then the case's files over
+// them, then the deletions.
+bool materialise(const LabSpec& spec, const fs::path& reference_lab, const fs::path& case_dir, const Case& c,
+                 const fs::path& submission, std::string* error) {
+    std::error_code ec;
+    fs::remove_all(submission, ec);
+    const fs::path lab = submission / spec.id;
+    fs::create_directories(lab, ec);
+    for (const std::string& f : spec.student_files) {
+        fs::create_directories((lab / f).parent_path(), ec);
+        fs::copy_file(reference_lab / f, lab / f, fs::copy_options::overwrite_existing, ec);
+        if (ec) {
+            *error = (reference_lab / f).string() + ": " + ec.message();
+            return false;
+        }
+    }
+    if (fs::is_directory(case_dir, ec)) {
+        for (const auto& entry : fs::recursive_directory_iterator(case_dir)) {
+            if (!entry.is_regular_file()) continue;
+            const fs::path rel = fs::relative(entry.path(), case_dir);
+            fs::create_directories((lab / rel).parent_path(), ec);
+            fs::copy_file(entry.path(), lab / rel, fs::copy_options::overwrite_existing, ec);
+        }
+    }
+    for (const std::string& f : c.remove) fs::remove(lab / f, ec);
+    return true;
+}
+
+Outcome judge(const std::string& lab, const Case& c, const grader::Report& report, const std::string& where) {
+    Outcome o;
+    o.lab = lab;
+    o.name = c.name;
+    o.kind = c.kind;
+    o.about = c.about;
+    o.report = where;
+    if (report.labs.empty()) {
+        o.why = "no report";
+        return o;
+    }
+    const grader::ReportLab& l = report.labs.front();
+    o.status = l.status;
+    o.score = l.score;
+    o.max_score = l.max_score;
+    for (const grader::ReportGoal& g : l.goals)
+        if (!g.met) o.goals_failed.push_back(g.id);
+    auto goalMet = [&](const std::string& id) {
+        for (const grader::ReportGoal& g : l.goals)
+            if (g.id == id) return g.met;
+        return false;
+    };
+    const bool full = l.score >= l.max_score - 1e-9;
+    if (c.kind == "alternative" || c.kind == "reference") {
+        if (l.status != "passed" || !full) o.why = "must pass with full marks";
+    } else if (c.kind == "starter") {
+        if (l.status != "failed") o.why = "must render and fail (compile, run, but not pass)";
+    } else if (l.status != c.status) {
+        o.why = "must end as " + c.status;
+    } else if (c.kind == "mistake") {
+        if (full) o.why = "must lose points";
+        for (const std::string& g : c.fails)
+            if (goalMet(g))
+                o.why += (o.why.empty() ? "" : "; ") + std::string("goal ") + g + " must not be met";
+        for (const std::string& g : c.keeps)
+            if (!goalMet(g))
+                o.why += (o.why.empty() ? "" : "; ") + std::string("goal ") + g + " must stay met";
+    }
+    if (o.why.empty() && c.diagnostic) {
+        bool found = false;
+        for (const grader::ReportDiagnostic& d : l.diagnostics)
+            found = found || (d.file == c.diagnostic->first && d.line == c.diagnostic->second);
+        if (!found) o.why = "must report " + c.diagnostic->first + ":" + std::to_string(c.diagnostic->second);
+    }
+    o.ok = o.why.empty();
+    return o;
+}
+
+}  // namespace
+
+int runCorpus(const CorpusArgs& args) {
+    const std::string labs_root = args.common.labs_root.empty() ? defaultLabsRoot() : args.common.labs_root;
+    const fs::path corpus = args.corpus_root.empty() ? fs::path(labs_root).parent_path() / "tests" / "corpus"
+                                                     : fs::path(args.corpus_root);
+    const fs::path reference_root = args.reference_root.empty()
+                                        ? fs::path(labs_root).parent_path() / "reference_solutions"
+                                        : fs::path(args.reference_root);
+    std::vector<std::string> ids = args.common.labs;
+    if (ids.empty())
+        for (const std::string& id : listLabIds(labs_root))
+            if (fs::exists(corpus / id / "cases.json")) ids.push_back(id);
+    if (ids.empty()) {
+        std::cerr << "shaderlab: no lab has a corpus under " << corpus.string() << "\n";
+        return 2;
+    }
+    const fs::path out = args.out_dir;
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) {
+        std::cerr << "shaderlab: " << out.string() << ": cannot create the output folder\n";
+        return 2;
+    }
+    GradeOptions base;
+    parseBackend(args.common.backend, &base.backend);
+    base.labs_root = labs_root;
+    base.limits.timeout_s = args.timeout_s;
+    if (args.use_reference) base.reference_root = reference_root.string();
+
+    std::vector<Outcome> outcomes;
+    bool readable = true;
+    for (const std::string& id : ids) {
+        const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / id).string());
+        if (!parsed.ok) {
+            for (const std::string& e : parsed.errors) std::cerr << e << "\n";
+            readable = false;
+            continue;
+        }
+        std::vector<Case> cases;
+        std::vector<std::string> errors;
+        if (!loadCases(corpus / id / "cases.json", parsed.spec, &cases, &errors)) {
+            for (const std::string& e : errors) std::cerr << e << "\n";
+            readable = false;
+            continue;
+        }
+        std::printf("%s: %s\n", id.c_str(), parsed.spec.title.c_str());
+        std::vector<std::pair<Case, fs::path>> runs;
+        Case reference;
+        reference.name = "reference";
+        reference.kind = "reference";
+        reference.about = "the reference solution";
+        runs.emplace_back(reference, reference_root);
+        Case starter;
+        starter.name = "starter";
+        starter.kind = "starter";
+        starter.about = "the starter code in labs/";
+        runs.emplace_back(starter, labs_root);
+        for (const Case& c : cases) {
+            const fs::path submission = out / id / "submissions" / c.name;
+            std::string error;
+            if (!materialise(parsed.spec, reference_root / id, corpus / id / c.name, c, submission, &error)) {
+                std::cerr << "shaderlab: " << error << "\n";
+                readable = false;
+                continue;
+            }
+            runs.emplace_back(c, submission);
+        }
+        for (const auto& [c, submission] : runs) {
+            GradeOptions options = base;
+            options.labs = {id};
+            options.out_dir = (out / id / "reports" / c.name).string();
+            if (c.timeout_s > 0) options.limits.timeout_s = c.timeout_s;
+            fs::create_directories(options.out_dir, ec);
+            grader::Report report = gradeSubmission(submission.string(), options);
+            report.tool_version = SHADERLAB_VERSION;
+            const fs::path report_file = fs::path(options.out_dir) / "report.json";
+            std::ofstream(report_file) << grader::reportToJson(report);
+            std::ofstream(fs::path(options.out_dir) / "report.html") << grader::reportToHtml(report);
+            Outcome o = judge(id, c, report, report_file.string());
+            std::string failed;
+            for (const std::string& g : o.goals_failed) failed += (failed.empty() ? "" : ",") + g;
+            std::printf("  %-4s %-30s %-11s %-13s %6.2f / %-6.2f %s\n", o.ok ? "ok" : "FAIL", c.name.c_str(),
+                        c.kind.c_str(), o.status.c_str(), o.score, o.max_score,
+                        failed.empty() ? "" : ("goals not met: " + failed).c_str());
+            if (!o.ok) std::printf("       expected: %s (%s)\n", o.why.c_str(), c.about.c_str());
+            outcomes.push_back(std::move(o));
+        }
+        // The two figures that show the grade separates the two groups.
+        double worst_alternative = -1.0, best_mistake = -1.0, max_score = 0.0;
+        for (const Outcome& o : outcomes) {
+            if (o.lab != id) continue;
+            max_score = o.max_score;
+            if (o.kind == "alternative" || o.kind == "reference")
+                worst_alternative = worst_alternative < 0 ? o.score : std::min(worst_alternative, o.score);
+            if (o.kind == "mistake") best_mistake = std::max(best_mistake, o.score);
+        }
+        std::printf(
+            "  worst correct solution %.2f / %.2f, best mistake %.2f / %.2f (passing needs every goal)\n\n",
+            worst_alternative, max_score, std::max(best_mistake, 0.0), max_score);
+    }
+
+    json summary = json::array();
+    bool all_ok = readable;
+    for (const Outcome& o : outcomes) {
+        all_ok = all_ok && o.ok;
+        summary.push_back({{"lab", o.lab},
+                           {"case", o.name},
+                           {"kind", o.kind},
+                           {"about", o.about},
+                           {"status", o.status},
+                           {"score", o.score},
+                           {"max_score", o.max_score},
+                           {"goals_not_met", o.goals_failed},
+                           {"ok", o.ok},
+                           {"expected", o.why},
+                           {"report", o.report}});
+    }
+    std::ofstream(out / "corpus.json") << summary.dump(2) << "\n";
+    std::printf("corpus: %s\n", fs::absolute(out / "corpus.json").string().c_str());
+    if (!readable) return 2;
+    return all_ok ? 0 : 1;
+}
+
+}  // namespace shaderlab::cli

@@ -1,0 +1,82 @@
+// Every lab proves that its grade follows its learning goals: `shaderlab corpus` grades the lab's
+// reference (full marks), starter (renders and fails), known mistakes (each fails, with the goal
+// it names not met) and correct alternatives (each passes), and this test fails when any of
+// those expectations does not hold. It also holds each lab to the course's minimum: a corpus
+// with at least six conceptual mistakes and three correct alternatives.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+const fs::path kRoot = SHADERLAB_SOURCE_DIR;
+
+std::vector<std::string> labIds() {
+    std::vector<std::string> ids;
+    for (const auto& entry : fs::directory_iterator(kRoot / "labs"))
+        if (entry.is_directory() && fs::exists(entry.path() / "lab.json"))
+            ids.push_back(entry.path().filename());
+    std::sort(ids.begin(), ids.end());
+    return ids;
+}
+
+class LabCorpus : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LabCorpus, HasEnoughMistakesAndAlternatives) {
+    std::ifstream in(kRoot / "tests" / "corpus" / GetParam() / "cases.json");
+    ASSERT_TRUE(in) << "tests/corpus/" << GetParam() << "/cases.json is missing";
+    const json cases = json::parse(in, nullptr, false);
+    ASSERT_FALSE(cases.is_discarded());
+    int mistakes = 0, alternatives = 0;
+    for (const json& c : cases["cases"]) {
+        mistakes += c["kind"] == "mistake";
+        alternatives += c["kind"] == "alternative";
+    }
+    EXPECT_GE(mistakes, 6) << GetParam();
+    EXPECT_GE(alternatives, 3) << GetParam();
+}
+
+TEST_P(LabCorpus, EveryVerdictIsTheExpectedOne) {
+    const fs::path out = fs::temp_directory_path() / ("shaderlab_corpus_" + GetParam());
+    fs::remove_all(out);
+    const std::string cmd =
+        std::string(SHADERLAB_CLI) + " corpus --lab " + GetParam() + " --out " + out.string() + " 2>&1";
+    std::string output;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, pipe)) output += buf;
+    const int status = pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status)) << output;
+    EXPECT_EQ(WEXITSTATUS(status), 0) << output;
+    std::ifstream in(out / "corpus.json");
+    const json summary = json::parse(in, nullptr, false);
+    ASSERT_FALSE(summary.is_discarded()) << output;
+    int reference = 0, starter = 0;
+    for (const json& c : summary) {
+        EXPECT_TRUE(c["ok"].get<bool>()) << c.dump(2);
+        reference += c["kind"] == "reference";
+        starter += c["kind"] == "starter";
+    }
+    EXPECT_EQ(reference, 1);
+    EXPECT_EQ(starter, 1);
+    std::printf("%s", output.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(Labs, LabCorpus, ::testing::ValuesIn(labIds()), [](const auto& param_info) {
+    std::string n = param_info.param;
+    for (char& c : n)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return n;
+});
+
+}  // namespace
