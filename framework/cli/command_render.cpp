@@ -83,11 +83,19 @@ int runRender(const RenderArgs& args) {
         const fs::path lab_out = fs::path(args.out_dir) / id;
         fs::create_directories(lab_out, ec);
         for (const SceneRender& scene : r.scenes) {
+            // The lab's result is the last graded image; every other one is named after its pass
+            // (and attachment, when the target has several or it is the depth).
+            std::size_t final_index = 0;
+            for (std::size_t i = 0; i < scene.passes.size(); ++i)
+                if (scene.passes[i].graded) final_index = i;
             for (std::size_t i = 0; i < scene.passes.size(); ++i) {
                 const PassImage& p = scene.passes[i];
-                const bool final_image = i + 1 == scene.passes.size();
+                const bool final_image = i == final_index;
+                const TargetSpec* t = parsed.spec.findTarget(p.target);
+                const bool named = p.attachment == "depth" || (t && t->attachments.size() > 1);
+                const std::string id_name = p.pass + (named ? "." + p.attachment : "");
                 const fs::path file =
-                    lab_out / (final_image ? scene.scene + ".png" : scene.scene + "." + p.pass + ".png");
+                    lab_out / (final_image ? scene.scene + ".png" : scene.scene + "." + id_name + ".png");
                 std::string err;
                 if (!grader::writePng(p.color, file.string(), &err)) {
                     std::cerr << "shaderlab: " << err << "\n";
