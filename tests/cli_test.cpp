@@ -127,6 +127,23 @@ TEST(CliMultiPass, ReportNamesTheFirstWrongPass) {
         EXPECT_EQ(scene["status"], c.status) << c.submission << "\n" << scene.dump(2);
         if (c.first_failing_pass) {
             EXPECT_EQ(scene["first_failing_pass"], c.first_failing_pass) << c.submission;
+            // Regression: the message mixed in the final pass's reasons and pixel positions. It
+            // gives the first wrong pass's own reasons.
+            std::string reasons;
+            for (const json& p : scene["passes"])
+                if (p["name"] == c.first_failing_pass)
+                    for (const json& r : p["reasons"])
+                        reasons += (reasons.empty() ? "" : "; ") + r.get<std::string>();
+            const std::string message = scene["message"];
+            EXPECT_NE(message.find(reasons), std::string::npos) << message << "\n" << reasons;
+            if (std::string(c.first_failing_pass) == "scene") {
+                EXPECT_EQ(message.rfind("first wrong pass: 'scene': ", 0), 0u) << message;
+                for (const json& r : scene["passes"][1]["reasons"]) {
+                    if (reasons.find(r.get<std::string>()) == std::string::npos) {
+                        EXPECT_EQ(message.find(r.get<std::string>()), std::string::npos) << message;
+                    }
+                }
+            }
         } else {
             EXPECT_TRUE(scene["first_failing_pass"].is_null()) << c.submission;
         }

@@ -191,6 +191,8 @@ std::string createInputTexture(const LabSpec& spec, const PassInput& in, unsigne
     }
 
     out->target = target;
+    // A unit no pass uses, so making a texture never disturbs the bindings of the pass being set up.
+    glActiveTexture(GL_TEXTURE0 + kScratchTextureUnit);
     out->width = w;
     out->height = h;
     out->depth = d;
@@ -206,6 +208,7 @@ std::string createInputTexture(const LabSpec& spec, const PassInput& in, unsigne
     }
     if (mipmaps) glGenerateMipmap(target);
     glBindTexture(target, 0);
+    glActiveTexture(GL_TEXTURE0);
     return {};
 }
 

@@ -11,6 +11,9 @@
 
 namespace shaderlab {
 
+// The texture unit the framework uses to create and update textures; passes use units 0..15.
+constexpr unsigned kScratchTextureUnit = 16;
+
 struct InputTexture {
     GLuint id = 0;
     GLenum target = 0;  // GL_TEXTURE_1D, _2D, _3D or _CUBE_MAP

@@ -129,6 +129,7 @@ struct TargetGl {
 
 bool createTarget(TargetGl* t, std::string* error) {
     const TargetSpec& s = *t->spec;
+    glActiveTexture(GL_TEXTURE0 + kScratchTextureUnit);
     const GLenum format = internalFormat(s.format);
     const GLenum tex_target = t->textureTarget();
     for (int b = 0; b < t->buffers; ++b) {
@@ -156,6 +157,7 @@ bool createTarget(TargetGl* t, std::string* error) {
         glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, s.width, s.height);
     }
     glBindTexture(tex_target, 0);
+    glActiveTexture(GL_TEXTURE0);
     std::vector<GLenum> draw_buffers;
     for (std::size_t i = 0; i < s.attachments.size(); ++i)
         draw_buffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
@@ -403,6 +405,16 @@ class LabRunner {
           origin_((std::filesystem::path(spec.lab_dir) / "lab.json").string()) {}
 
     ~LabRunner() {
+        // Let the driver finish what was queued (a lab that failed half-way leaves clears and
+        // uploads in flight) before the objects they use go; llvmpipe crashes later otherwise.
+        glFinish();
+        for (const auto& [unit, target] : bound_units_) {
+            glActiveTexture(GL_TEXTURE0 + unit);
+            glBindTexture(target, 0);
+            glBindSampler(unit, 0);
+        }
+        glActiveTexture(GL_TEXTURE0);
+        glBindVertexArray(0);
         for (auto& [key, tex] : input_textures_) glDeleteTextures(1, &tex.id);
         for (auto& [key, sampler] : samplers_) glDeleteSamplers(1, &sampler);
         if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
@@ -991,11 +1003,13 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
     target.front = write;
     if (pass.draw == DrawKind::Fullscreen) target.fullscreen_drawn = true;
     if (target.mipmapped) {
+        glActiveTexture(GL_TEXTURE0 + kScratchTextureUnit);
         for (GLuint tex : target.color[target.front]) {
             glBindTexture(target.textureTarget(), tex);
             glGenerateMipmap(target.textureTarget());
         }
         glBindTexture(target.textureTarget(), 0);
+        glActiveTexture(GL_TEXTURE0);
     }
     if (!last_iteration) return true;
     std::vector<std::string> read = pass.graded;
