@@ -847,6 +847,17 @@ bool writeTeapotOnPlane(const fs::path& dir) {
     return w.write(dir, "teapot_on_plane", false);
 }
 
+// A large plane alone, texture coordinates 0..1 across it: for procedural patterns seen at
+// grazing angles, where a pattern aliases (the labs set the camera).
+bool writePlane(const fs::path& dir) {
+    SceneWriter w;
+    const int grey = w.addMaterial("white", {0.9, 0.9, 0.9, 1.0});
+    w.addMeshNode("plane", w.addMesh("plane", plane(40.0, 4), grey, kUByte, Layout::Separate));
+    w.addCamera({0.0, 1.0, 8.0}, {0.0, 0.0, -6.0});
+    w.addPointLight(kKeyLight, kWhite, 1.0);
+    return w.write(dir, "plane", false);
+}
+
 }  // namespace
 }  // namespace shaderlab
 
@@ -867,6 +878,6 @@ int main(int argc, char** argv) {
                     writeSphere(dir, "sphere_low_poly", 12, 6, kUByte) && writeTorus(dir) &&
                     writeTorusKnot(dir) && writeCube(dir, "cube_flat", true) &&
                     writeCube(dir, "cube_no_normals", false) && writeNonuniformScale(dir) &&
-                    writeGroundPlane(dir) && writeTeapot(dir) && writeTeapotOnPlane(dir);
+                    writeGroundPlane(dir) && writeTeapot(dir) && writeTeapotOnPlane(dir) && writePlane(dir);
     return ok ? 0 : 1;
 }
