@@ -435,10 +435,11 @@ TEST(GltfFeatures, NormalizedByteTexcoordsWithByteStride) {
     EXPECT_TRUE(mesh.had_texcoords);
     // Flat normals un-share the vertices, keeping the corners in order for a non-indexed
     // triangle.
+    // The file's (u, v) are (0, 0), (1, 0), (0, 1); the mesh holds OpenGL's (u, 1 - v).
     ASSERT_EQ(mesh.texcoords.size(), 3u);
-    EXPECT_EQ(mesh.texcoords[0], glm::vec2(0.0f, 0.0f));
-    EXPECT_EQ(mesh.texcoords[1], glm::vec2(1.0f, 0.0f));
-    EXPECT_EQ(mesh.texcoords[2], glm::vec2(0.0f, 1.0f));
+    EXPECT_EQ(mesh.texcoords[0], glm::vec2(0.0f, 1.0f));
+    EXPECT_EQ(mesh.texcoords[1], glm::vec2(1.0f, 1.0f));
+    EXPECT_EQ(mesh.texcoords[2], glm::vec2(0.0f, 0.0f));
     EXPECT_TRUE(near3(mesh.normals[0], glm::vec3(0, 0, 1)));
 }
 

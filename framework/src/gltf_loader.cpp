@@ -670,7 +670,10 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
         }
         mesh.texcoords.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            const glm::vec2 uv(values[2 * i], values[2 * i + 1]);
+            // glTF puts (0, 0) at an image's top-left, OpenGL texture coordinates at the row
+            // uploaded first, which the framework makes the image's bottom row: t = 1 - v keeps
+            // an image upright on a mesh as in a fullscreen pass.
+            const glm::vec2 uv(values[2 * i], 1.0f - values[2 * i + 1]);
             mesh.texcoords[i] = std::isfinite(uv.x) && std::isfinite(uv.y) ? uv : glm::vec2(0.0f);
         }
         mesh.had_texcoords = true;

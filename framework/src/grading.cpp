@@ -1,9 +1,11 @@
 // Grading a submission lab by lab; see grading.h and docs/grading.md.
 #include "shaderlab/grading.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include "grader/heatmap.h"
 #include "grader/scoring.h"
@@ -60,6 +62,46 @@ std::vector<GradedImage> gradedImages(const LabSpec& spec) {
         }
     }
     return out;
+}
+
+struct FailingImage {
+    std::size_t image;  // index into gradedImages()
+    std::vector<std::string> reasons;
+};
+
+std::size_t passIndex(const LabSpec& spec, const std::string& name) {
+    for (std::size_t i = 0; i < spec.passes.size(); ++i)
+        if (spec.passes[i].name == name) return i;
+    return 0;
+}
+
+// For each pass, the passes whose results reach it: those that drew a target it reads (earlier,
+// or anywhere in its repeat group) or drew its own target before it, and theirs in turn.
+std::vector<std::set<std::size_t>> passAncestors(const LabSpec& spec) {
+    const std::size_t n = spec.passes.size();
+    std::vector<std::set<std::size_t>> direct(n), all(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const PassSpec& p = spec.passes[i];
+        for (std::size_t j = 0; j < n; ++j) {
+            if (j == i) continue;
+            const PassSpec& q = spec.passes[j];
+            const bool same_loop = p.loop >= 0 && p.loop == q.loop;
+            const bool reads = std::any_of(p.inputs.begin(), p.inputs.end(), [&](const PassInput& in) {
+                return in.source == InputSource::Target && in.target == q.target;
+            });
+            if ((reads && (j < i || same_loop)) || (q.target == p.target && j < i)) direct[i].insert(j);
+        }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        std::vector<std::size_t> stack(direct[i].begin(), direct[i].end());
+        while (!stack.empty()) {
+            const std::size_t j = stack.back();
+            stack.pop_back();
+            if (!all[i].insert(j).second) continue;
+            stack.insert(stack.end(), direct[j].begin(), direct[j].end());
+        }
+    }
+    return all;
 }
 
 grader::Image coverageImage(const std::vector<std::uint8_t>& coverage, int w, int h) {
@@ -233,14 +275,14 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
 
     // (scene, pass) -> every graded image of that pass passed
     std::map<std::pair<std::string, std::string>, bool> checks;
+    const std::vector<std::set<std::size_t>> ancestors = passAncestors(spec);
     bool all_passed = true;
     for (const SceneRender& scene : student.render.scenes) {
         grader::ReportScene rs;
         rs.name = scene.scene;
         rs.render_ms = scene.render_ms;
         const auto ref_it = ref.scenes.find(scene.scene);
-        std::vector<std::string> first_reasons;
-        bool final_failed = false;
+        std::vector<FailingImage> failing;
         for (std::size_t i = 0; i < scene.passes.size(); ++i) {
             const PassImage& mine = scene.passes[i];
             const PassImage& theirs = ref_it->second[i];
@@ -284,12 +326,8 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                 rp.diff_image = writeImage(heat, out_dir, base / ("diff" + suffix + ".png"), &write_errors);
             auto& check = checks.emplace(std::make_pair(scene.scene, g.pass->name), true).first->second;
             check = check && v.passed;
-            if (!v.passed && rs.first_failing_pass.empty()) {
-                rs.first_failing_pass = g.id;
-                first_reasons = v.reasons;
-            }
+            if (!v.passed) failing.push_back({i, v.reasons});
             if (final_image) {
-                final_failed = !v.passed;
                 rs.metrics = rp.metrics;
                 rs.frame_metrics = reportMetrics(v.frame, v);
                 rs.worst_region = v.worst.tile;
@@ -300,16 +338,31 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             }
             rs.passes.push_back(std::move(rp));
         }
-        rs.status = rs.first_failing_pass.empty() ? "passed" : "failed";
-        // The reasons are the first wrong image's own: a later pass that reads it differs as a
-        // consequence, and its numbers would point the student at the wrong place.
-        if (!rs.first_failing_pass.empty()) {
-            const bool first_is_final = rs.first_failing_pass == rs.passes.back().name;
-            rs.message = (scene.passes.size() > 1 && !first_is_final
-                              ? "first wrong pass: '" + rs.first_failing_pass + "': "
-                              : std::string()) +
-                         joinReasons(first_reasons);
-            if (!first_is_final && final_failed) rs.message += " (the final image differs too)";
+        rs.status = failing.empty() ? "passed" : "failed";
+        // Where to look first: the failing images no other failing image feeds (through the
+        // targets their passes read and draw into). A later pass that uses a wrong image differs
+        // as a consequence, and its numbers would point the student at the wrong place; two
+        // independent tasks that both fail are both named.
+        std::vector<const FailingImage*> roots;
+        for (const FailingImage& f : failing) {
+            const std::size_t pass = passIndex(spec, graded[f.image].pass->name);
+            const bool fed_by_failure =
+                std::any_of(failing.begin(), failing.end(), [&](const FailingImage& o) {
+                    return ancestors[pass].count(passIndex(spec, graded[o.image].pass->name)) > 0;
+                });
+            if (!fed_by_failure) roots.push_back(&f);
+        }
+        if (!roots.empty()) rs.first_failing_pass = graded[roots.front()->image].id;
+        if (scene.passes.size() == 1 && !failing.empty()) {
+            rs.message = joinReasons(failing.front().reasons);
+        } else if (roots.size() == 1 && failing.size() > 1) {
+            rs.message = "first wrong pass: '" + rs.first_failing_pass +
+                         "': " + joinReasons(roots.front()->reasons) +
+                         " (later passes that use it differ too)";
+        } else {
+            for (const FailingImage* r : roots)
+                rs.message += (rs.message.empty() ? "'" : "; '") + graded[r->image].id +
+                              "': " + joinReasons(r->reasons);
         }
         all_passed = all_passed && rs.status == "passed";
         lab.scenes.push_back(std::move(rs));
@@ -403,8 +456,11 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
                 const GradedImage& g = graded[i];
                 std::string err;
                 const std::string color = goldenPath(lab_dir, s.scene, g.id, final_image, false, g.hdr);
-                const bool ok =
+                bool ok =
                     g.hdr ? grader::writeHdr(p.color, color, &err) : grader::writePng(p.color, color, &err);
+                // An .hdr golden gets a PNG beside it, clamped as displayed, for people and READMEs.
+                if (ok && g.hdr)
+                    ok = grader::writePng(p.color, color.substr(0, color.size() - 4) + ".preview.png", &err);
                 if (!ok || !grader::writePng(coverageImage(p.coverage, p.color.width, p.color.height),
                                              goldenPath(lab_dir, s.scene, g.id, final_image, true), &err))
                     errors.push_back(err);

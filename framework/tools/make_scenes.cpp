@@ -370,8 +370,9 @@ bool outwardNormal(const PatchPoint& p, glm::dvec3* normal) {
 // normals (an inverted-hull outline) cannot open cracks along the seams; equal positions with
 // normals further apart (where the handle's end meets the body) stay separate, a crease.
 // Texcoords are a cylindrical map around the pot's axis, s = angle (0.5 facing +Z, wrapping at
-// -Z, the back) and t = 0 at the lid's top to 1 at the bottom: it depends on the position only,
-// so welded vertices agree on it, which per-patch (u, v) would not.
+// -Z, the back; triangles across the wrap use vertex copies at s + 1) and t = 0 at the lid's top
+// to 1 at the bottom: it depends on the position only, so welded vertices agree on it, which
+// per-patch (u, v) would not.
 // The data itself leaves openings, kept as they are: the spout's mouth, the ends of the spout and
 // the handle (inside the body), and a gap between the lid (radius 1.3) and the rim (1.4). With
 // back-face culling the background shows through the last two.
@@ -464,6 +465,30 @@ Geometry teapot(int n, double radius) {
                    kc = key(g.vertices[c].position);
         if (ka == kb || kb == kc || ka == kc) continue;
         g.indices.insert(g.indices.end(), {a, b, c});
+    }
+    // The cylindrical map wraps at the back, where s jumps from 1 to 0: a triangle across the
+    // wrap would interpolate over the whole texture. Its corners on the s < 0.5 side use copies
+    // at s + 1 (same position and normal, so an outline pushed along the normals stays closed).
+    std::map<std::uint32_t, std::uint32_t> shifted;
+    for (std::size_t t = 0; t + 2 < g.indices.size(); t += 3) {
+        double lo_s = 1.0, hi_s = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) {
+            lo_s = std::min(lo_s, g.vertices[g.indices[t + k]].uv.x);
+            hi_s = std::max(hi_s, g.vertices[g.indices[t + k]].uv.x);
+        }
+        if (hi_s - lo_s <= 0.5) continue;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::uint32_t i = g.indices[t + k];
+            if (g.vertices[i].uv.x >= 0.5) continue;
+            auto it = shifted.find(i);
+            if (it == shifted.end()) {
+                Vertex copy = g.vertices[i];
+                copy.uv.x += 1.0;
+                it = shifted.emplace(i, static_cast<std::uint32_t>(g.vertices.size())).first;
+                g.vertices.push_back(copy);
+            }
+            g.indices[t + k] = it->second;
+        }
     }
     orientTriangles(&g);
     return g;

@@ -12,7 +12,8 @@
 namespace shaderlab {
 
 // One triangle list: per-vertex attributes and 32-bit indices. Normals are always
-// present (generated flat when the file has none); texcoords are zero when absent.
+// present (generated flat when the file has none); texcoords are zero when absent, and in
+// OpenGL's convention: t = 0 is an image's bottom row (glTF's v runs down: t = 1 - v).
 struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
