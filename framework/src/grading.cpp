@@ -311,8 +311,10 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             // The pictures show what was compared: HDR images over the same scale.
             grader::Image shown_mine = mine.color, shown_theirs = theirs.color;
             if (g.hdr && v.hdr_scale > 1.0) {
-                for (float& x : shown_mine.pixels) x = static_cast<float>(x / v.hdr_scale);
-                for (float& x : shown_theirs.pixels) x = static_cast<float>(x / v.hdr_scale);
+                for (grader::Image* img : {&shown_mine, &shown_theirs})
+                    for (std::size_t k = 0; k < img->pixels.size(); ++k)
+                        if (img->channels < 4 || k % 4 != 3)  // colour only: alpha stays as drawn
+                            img->pixels[k] = static_cast<float>(img->pixels[k] / v.hdr_scale);
             }
             rp.student_image =
                 writeImage(shown_mine, out_dir, base / ("student" + suffix + ".png"), &write_errors);
