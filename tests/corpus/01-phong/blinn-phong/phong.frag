@@ -1,0 +1,42 @@
+#version 330 core
+// 01-phong, fragment stage: ambient + per light (diffuse + specular), per fragment.
+
+in vec3 v_world_position;
+in vec3 v_world_normal;
+
+uniform vec3 u_camera_position;
+uniform int u_light_count;
+uniform vec4 u_light_position[SL_MAX_LIGHTS];
+uniform vec3 u_light_color[SL_MAX_LIGHTS];
+uniform vec4 u_base_color;
+
+uniform float u_ambient;
+uniform float u_diffuse;
+uniform float u_specular;
+uniform float u_shininess;
+
+out vec4 o_color;
+
+void main() {
+    vec3 n = normalize(v_world_normal);
+    vec3 v = normalize(u_camera_position - v_world_position);
+
+    vec3 color = u_ambient * u_base_color.rgb;
+
+    for (int i = 0; i < u_light_count; ++i) {
+        vec3 l = normalize(u_light_position[i].xyz - v_world_position * u_light_position[i].w);
+        float n_dot_l = dot(n, l);
+        if (n_dot_l <= 0.0) continue;
+
+        // Specular with the halfway vector instead of the reflection vector (what OpenGL's
+        // fixed pipeline did, and cheaper). n.h falls off about half as fast as r.v, so
+        // the exponent is multiplied by 4 to give a highlight of the same size.
+        vec3 h = normalize(l + v);
+        float spec = pow(max(dot(n, h), 0.0), 4.0 * u_shininess);
+
+        color += u_diffuse * n_dot_l * u_base_color.rgb * u_light_color[i];
+        color += u_specular * spec * u_light_color[i];
+    }
+
+    o_color = vec4(color, 1.0);
+}

@@ -1,0 +1,41 @@
+#version 330 core
+// 01-phong, fragment stage.
+
+in vec3 v_world_position;
+in vec3 v_world_normal;
+
+uniform vec3 u_camera_position;
+uniform int u_light_count;
+uniform vec4 u_light_position[SL_MAX_LIGHTS];
+uniform vec3 u_light_color[SL_MAX_LIGHTS];
+uniform vec4 u_base_color;
+
+uniform float u_ambient;
+uniform float u_diffuse;
+uniform float u_specular;
+uniform float u_shininess;
+
+out vec4 o_color;
+
+void main() {
+    // The interpolated normal is not unit length and not really perpendicular to the triangle,
+    // so use the triangle's own normal: the cross product of two vectors lying in it, taken
+    // from the screen-space derivatives of the position. Always exact and always unit length.
+    vec3 n = normalize(cross(dFdx(v_world_position), dFdy(v_world_position)));
+    vec3 v = normalize(u_camera_position - v_world_position);
+
+    vec3 color = u_ambient * u_base_color.rgb;
+
+    for (int i = 0; i < u_light_count; ++i) {
+        vec4 light = u_light_position[i];
+        vec3 l = normalize(light.xyz - light.w * v_world_position);
+        float n_dot_l = dot(n, l);
+        if (n_dot_l > 0.0) {
+            vec3 r = reflect(-l, n);
+            float spec = pow(max(dot(r, v), 0.0), u_shininess);
+            color += u_light_color[i] * (u_diffuse * n_dot_l * u_base_color.rgb + u_specular * spec);
+        }
+    }
+
+    o_color = vec4(color, 1.0);
+}
