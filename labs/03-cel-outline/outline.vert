@@ -27,7 +27,9 @@ void main() {
 
     // TODO(student): the normal's direction on the screen: apply the projection to the normal
     // as a direction (w = 0), keep x and y, and turn it into a unit vector measured in pixels.
-    // Guard against a normal that points straight at the eye (its x and y are 0).
+    // Guard against a normal that points straight at (or away from) the eye: its x and y are 0,
+    // and such a vertex is not on the silhouette anyway (the README suggests fading the push out
+    // there).
 
     // TODO(student): move clip.xy by u_outline_width pixels along that direction. NDC runs from
     // -1 to 1 across u_resolution pixels, and the rasteriser will divide clip.xy by clip.w.
