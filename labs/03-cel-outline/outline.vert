@@ -1,0 +1,38 @@
+#version 330 core
+// 03-cel-outline, task 1, vertex stage of the inverted hull.
+//
+// The "hull" pass draws the object a second time, into the image the "cel" pass just drew, with
+// FRONT faces culled (lab.json). If every vertex is pushed out along its normal, the back faces
+// of this slightly larger shell peek out around the object: that rim is the outline. Read
+// labs/03-cel-outline/README.md first: it explains why the push is done in clip space and why
+// it is multiplied by w.
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+
+uniform mat4 u_model_view_projection;
+uniform mat4 u_view;
+uniform mat4 u_projection;
+uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model))): object normals to world space
+uniform vec2 u_resolution;     // target size in pixels
+
+uniform float u_outline_width;  // the outline's width in PIXELS (4 in lab.json)
+
+void main() {
+    vec4 clip = u_model_view_projection * vec4(a_position, 1.0);
+
+    // TODO(student): the normal in view space. Which matrix keeps a normal perpendicular to the
+    // surface when the object is scaled more along one axis than another (the
+    // "nonuniform_scale" scene)? The framework gives you the object-to-world one.
+
+    // TODO(student): the normal's direction on the screen: apply the projection to the normal
+    // as a direction (w = 0), keep x and y, and turn it into a unit vector measured in pixels.
+    // Guard against a normal that points straight at (or away from) the eye: its x and y are 0,
+    // and such a vertex is not on the silhouette anyway (the README suggests fading the push out
+    // there).
+
+    // TODO(student): move clip.xy by u_outline_width pixels along that direction. NDC runs from
+    // -1 to 1 across u_resolution pixels, and the rasteriser will divide clip.xy by clip.w.
+
+    gl_Position = clip;
+}
