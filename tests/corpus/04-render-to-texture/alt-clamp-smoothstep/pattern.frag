@@ -1,0 +1,41 @@
+#version 330 core
+// 04-render-to-texture, pass "pattern": draw an animated procedural texture into a render target.
+// This pass draws one triangle that covers the whole 256x256 target, so this shader runs once
+// per texel, and v_uv is that texel's texture coordinate (s, t), 0..1 across the target
+// ((0, 0) is the texel at the bottom left, as OpenGL stores it). Whatever colour you write here
+// becomes the texel the mesh pass reads at (s, t). Read labs/04-render-to-texture/README.md.
+//
+// The picture to draw: soft-edged stripes, wobbling sideways, travelling across the texture:
+//   p      = uv - velocity * time
+//   phase  = frequency . p + wobble * sin(2 pi p.t)     (measured in cycles)
+//   stripe = smoothstep(-softness, softness, sin(2 pi phase))
+//   colour = mix(background, stripe colour, stripe)
+
+in vec2 v_uv;
+
+uniform float u_time;        // seconds, fixed per graded scene
+uniform vec2 u_frequency;    // stripes across the texture along s and t (whole numbers, so it tiles)
+uniform vec2 u_velocity;     // how far the pattern travels per second, in texture units
+uniform float u_wobble;      // how far the stripes swing sideways, in cycles
+uniform float u_softness;    // half width of the smoothstep, in units of the sine
+uniform vec3 u_background;
+uniform vec3 u_stripe_color;
+// (Some scenes also set u_tiling: that is for the mesh passes, which repeat this texture across
+// the mesh. This pass draws the texture itself, once.)
+
+out vec4 o_color;
+
+const float PI = 3.14159265358979;
+
+void main() {
+    // Where this texel was at time 0: the pattern has moved by velocity * time since.
+    vec2 p = v_uv - u_velocity * u_time;
+
+    float phase = dot(u_frequency, p) + u_wobble * sin(2.0 * PI * p.y);
+
+    // smoothstep written out: a clamped ramp, then the cubic 3x^2 - 2x^3 that eases both ends.
+    float x = clamp((sin(2.0 * PI * phase) + u_softness) / (2.0 * u_softness), 0.0, 1.0);
+    float stripe = x * x * (3.0 - 2.0 * x);
+
+    o_color = vec4(mix(u_background, u_stripe_color, stripe), 1.0);
+}

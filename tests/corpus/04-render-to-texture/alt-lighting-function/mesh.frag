@@ -1,0 +1,36 @@
+#version 330 core
+// 04-render-to-texture, passes "uv_check" and "mesh": colour the mesh from a texture, then light it.
+// u_texture is the pattern target in the "mesh" pass, and a UV test grid (uv_grid.png) in the
+// "uv_check" pass: the same code must put both on the mesh the same way. The lab sets up the
+// sampler (trilinear filtering with mipmaps, wrap mode repeat); your job is the coordinate.
+
+in vec3 v_world_position;
+in vec3 v_world_normal;
+in vec2 v_texcoord;
+
+uniform sampler2D u_texture;
+uniform vec2 u_tiling;       // how often the texture repeats across the mesh's 0..1 range
+uniform float u_ambient;
+uniform int u_light_count;
+uniform vec4 u_light_position[SL_MAX_LIGHTS];  // w = 1: point light; w = 0: direction toward it
+uniform vec3 u_light_color[SL_MAX_LIGHTS];
+
+out vec4 o_color;
+
+// Ambient plus Lambert, with the two kinds of light handled in separate branches.
+vec3 irradiance(vec3 n, vec3 p) {
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < u_light_count; ++i) {
+        vec3 l = u_light_position[i].w == 0.0 ? normalize(u_light_position[i].xyz)
+                                               : normalize(u_light_position[i].xyz - p);
+        sum += clamp(dot(n, l), 0.0, 1.0) * u_light_color[i];
+    }
+    return u_ambient + (1.0 - u_ambient) * sum;
+}
+
+void main() {
+    vec3 albedo = texture(u_texture, v_texcoord * u_tiling).rgb;
+
+    // Given: ambient + Lambert diffuse, so the shape reads.
+    o_color = vec4(albedo * irradiance(normalize(v_world_normal), v_world_position), 1.0);
+}
