@@ -1,0 +1,19 @@
+#version 330 core
+// Lab 05, step 1: passthrough. Show the scene exactly as the scene pass drew it.
+//
+// This is a fullscreen pass: shared/fullscreen.vert draws one triangle over the whole target and
+// hands you v_uv, which runs from (0, 0) at the bottom-left corner to (1, 1) at the top-right.
+// u_scene is the texture the scene pass drew into; it has the same size as this pass's target.
+
+in vec2 v_uv;
+
+uniform sampler2D u_scene;
+
+out vec4 o_color;
+
+void main() {
+    // TODO(student): read u_scene at this fragment's texture coordinate and write its colour.
+    // (Does the picture need flipping? Think about where OpenGL puts row 0, both when it draws
+    // into a texture and when it samples one.)
+    o_color = vec4(0.0, 0.0, 0.0, 1.0);
+}

@@ -1,0 +1,17 @@
+#version 330 core
+// Lab 05, step 5: pixelize. Cut the picture into square blocks of u_block_size x u_block_size
+// texels, counted from the bottom-left corner, and fill each block with the scene's colour at the
+// block's centre.
+
+in vec2 v_uv;
+
+uniform sampler2D u_scene;
+uniform int u_block_size;  // in texels; odd in every scene, so a block has a middle texel
+
+out vec4 o_color;
+
+void main() {
+    // TODO(student): find this fragment's position in texels, the block it falls in, and the
+    // centre of that block; convert the centre back to uv and sample the scene there.
+    o_color = vec4(texture(u_scene, v_uv).rgb, 1.0);
+}
