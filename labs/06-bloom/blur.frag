@@ -1,0 +1,27 @@
+#version 330 core
+// Lab 06 (bloom), passes "blur<level>_h" and "blur<level>_v": one direction of a separable 7-tap
+// Gaussian blur. lab.json runs this shader six times: a horizontal pass (u_direction = (1, 0))
+// then a vertical one (u_direction = (0, 1)) at each of three levels (1/2, 1/4 and 1/8 of the
+// screen). The first pass of each level reads an image twice the size of its target.
+//
+// The taps sit at offsets -3, -2, ..., 3 TEXELS OF THE INPUT along u_direction, with Gaussian
+// weights for sigma = 1.5 texels normalised so that the seven of them sum to 1:
+//     w_k = exp(-k^2 / (2 sigma^2)) / sum_{j=-3..3} exp(-j^2 / (2 sigma^2))
+// Texture coordinates run 0..1 across the image, so one texel is 1 / (the input's size).
+
+in vec2 v_uv;
+
+uniform sampler2D u_image;
+uniform vec2 u_direction;  // (1, 0): horizontal; (0, 1): vertical
+
+out vec4 o_color;
+
+void main() {
+    // TODO(student): the size of one texel of u_image in texture coordinates (textureSize gives
+    // the input's size in texels; u_resolution would be the target's, which is not the same here).
+    // TODO(student): the Gaussian weights w_0..w_3 for sigma = 1.5, normalised over the 7 taps.
+    // TODO(student): sum the 7 taps v_uv + k * (one texel along u_direction), k = -3..3, each times w_|k|.
+    // For now this pass copies its input.
+    vec3 sum = texture(u_image, v_uv).rgb;
+    o_color = vec4(sum, 1.0);
+}

@@ -1,0 +1,28 @@
+#version 330 core
+// Lab 06 (bloom), pass "composite": add the glare to the scene, then tone-map.
+//
+// Inputs: u_scene (the HDR scene) and the three blurred levels u_bloom0 (1/2 size), u_bloom1
+// (1/4) and u_bloom2 (1/8). The texture unit scales them to this pass's full size for you.
+//     hdr   = scene + u_level_weights.x * L0 + u_level_weights.y * L1 + u_level_weights.z * L2
+//     x     = u_exposure * hdr
+//     color = x / (1 + x)        (Reinhard's operator, per colour component)
+// Add in HDR first; tone mapping is the very last step.
+
+in vec2 v_uv;
+
+uniform sampler2D u_scene;
+uniform sampler2D u_bloom0;  // level 0: half size
+uniform sampler2D u_bloom1;  // level 1: quarter size
+uniform sampler2D u_bloom2;  // level 2: eighth size
+uniform vec3 u_level_weights;
+uniform float u_exposure;
+
+out vec4 o_color;
+
+void main() {
+    vec3 scene = texture(u_scene, v_uv).rgb;
+    // TODO(student): add the three levels, weighted by u_level_weights, to the scene.
+    // TODO(student): tone-map the sum (times u_exposure) with x / (1 + x).
+    // For now this shows the scene as it is, clamped by the display.
+    o_color = vec4(scene, 1.0);
+}

@@ -1,0 +1,21 @@
+#version 330 core
+// Lab 06 (bloom), pass "scene": world-space position and normal for per-fragment Phong shading.
+// This file is the course's, not a student file: the lab is about what happens after the scene
+// is drawn.
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+
+uniform mat4 u_model;
+uniform mat4 u_view_projection;
+uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model)))
+
+out vec3 v_world_position;
+out vec3 v_world_normal;
+
+void main() {
+    vec4 world = u_model * vec4(a_position, 1.0);
+    v_world_position = world.xyz;
+    v_world_normal = u_normal_matrix * a_normal;
+    gl_Position = u_view_projection * world;
+}

@@ -1,0 +1,20 @@
+#version 330 core
+// Composite: the bloom is the sum of the three blurred levels, tone-mapped.
+
+in vec2 v_uv;
+
+uniform sampler2D u_scene;
+uniform sampler2D u_bloom0;
+uniform sampler2D u_bloom1;
+uniform sampler2D u_bloom2;
+uniform vec3 u_level_weights;
+uniform float u_exposure;
+
+out vec4 o_color;
+
+void main() {
+    vec3 bloom = u_level_weights.x * texture(u_bloom0, v_uv).rgb + u_level_weights.y * texture(u_bloom1, v_uv).rgb +
+                 u_level_weights.z * texture(u_bloom2, v_uv).rgb;
+    vec3 x = u_exposure * bloom;
+    o_color = vec4(x / (1.0 + x), 1.0);
+}
