@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -460,9 +461,17 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
                 const std::string color = goldenPath(lab_dir, s.scene, g.id, final_image, false, g.hdr);
                 bool ok =
                     g.hdr ? grader::writeHdr(p.color, color, &err) : grader::writePng(p.color, color, &err);
-                // An .hdr golden gets a PNG beside it, clamped as displayed, for people and READMEs.
-                if (ok && g.hdr)
-                    ok = grader::writePng(p.color, color.substr(0, color.size() - 4) + ".preview.png", &err);
+                // An .hdr golden gets a PNG beside it for people and READMEs: its colours over
+                // their largest value (when above 1), as the report shows HDR images.
+                if (ok && g.hdr) {
+                    grader::Image preview = p.color;
+                    float peak = 1.0f;
+                    for (std::size_t k = 0; k < preview.pixels.size(); ++k)
+                        if (k % 4 != 3 && std::isfinite(preview.pixels[k])) peak = std::max(peak, preview.pixels[k]);
+                    for (std::size_t k = 0; k < preview.pixels.size(); ++k)
+                        if (k % 4 != 3) preview.pixels[k] /= peak;
+                    ok = grader::writePng(preview, color.substr(0, color.size() - 4) + ".preview.png", &err);
+                }
                 if (!ok || !grader::writePng(coverageImage(p.coverage, p.color.width, p.color.height),
                                              goldenPath(lab_dir, s.scene, g.id, final_image, true), &err))
                     errors.push_back(err);
