@@ -467,7 +467,8 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
                     grader::Image preview = p.color;
                     float peak = 1.0f;
                     for (std::size_t k = 0; k < preview.pixels.size(); ++k)
-                        if (k % 4 != 3 && std::isfinite(preview.pixels[k])) peak = std::max(peak, preview.pixels[k]);
+                        if (k % 4 != 3 && std::isfinite(preview.pixels[k]))
+                            peak = std::max(peak, preview.pixels[k]);
                     for (std::size_t k = 0; k < preview.pixels.size(); ++k)
                         if (k % 4 != 3) preview.pixels[k] /= peak;
                     ok = grader::writePng(preview, color.substr(0, color.size() - 4) + ".preview.png", &err);
