@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -78,5 +79,28 @@ INSTANTIATE_TEST_SUITE_P(Labs, LabCorpus, ::testing::ValuesIn(labIds()), [](cons
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
     return n;
 });
+
+}  // namespace
+
+namespace {
+
+// The course index (labs/README.md) links every lab folder and nothing else, and every lab has
+// its README: the list of labs cannot drift from the folders.
+TEST(CourseIndex, ListsEveryLabAndOnlyThem) {
+    std::ifstream in(kRoot / "labs" / "README.md");
+    ASSERT_TRUE(in);
+    const std::string index((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const std::string& id : labIds()) {
+        EXPECT_NE(index.find("[" + id + "](" + id + "/README.md)"), std::string::npos)
+            << id << " is not indexed";
+        EXPECT_TRUE(fs::is_regular_file(kRoot / "labs" / id / "README.md")) << id;
+    }
+    for (std::size_t at = index.find("/README.md)"); at != std::string::npos;
+         at = index.find("/README.md)", at + 1)) {
+        const std::size_t open = index.rfind('(', at);
+        const std::string folder = index.substr(open + 1, at - open - 1);
+        EXPECT_TRUE(fs::is_directory(kRoot / "labs" / folder)) << folder << " is linked but does not exist";
+    }
+}
 
 }  // namespace
