@@ -1,0 +1,49 @@
+#version 330 core
+// 07-environment-mapping, the irradiance pass. This shader runs once for every texel of an 8x8
+// cube map (six faces, one draw per face). For its texel's direction n it must add up the light
+// arriving from the whole sky, every texel of the 16x16 small sky, weighted by
+//   max(n . w, 0)   (Lambert's cosine: light from the side counts less)   and
+//   dOmega          (the solid angle the sky texel covers: corner texels cover less than centre ones)
+// and divide by pi, so that a sky of constant radiance L gives back L:
+//   E(n) / pi = (1 / pi) * sum_texels L_k * max(n . w_k, 0) * dOmega_k
+// Read labs/07-environment-mapping/README.md first: it derives both weights.
+
+in vec2 v_uv;  // 0..1 across the face being drawn: s = v_uv.x, t = v_uv.y
+
+uniform int u_cube_face;          // the face this draw writes: 0..5 = +x, -x, +y, -y, +z, -z
+uniform samplerCube u_sky_small;  // 16x16 per face, nearest filtering
+
+out vec4 o_color;
+
+const int kSkySize = 16;
+const float kPi = 3.14159265358979;
+
+// The (unnormalised) direction through face coordinates sc, tc in [-1, 1] of a cube face.
+vec3 faceDirection(int face, float sc, float tc) {
+    // TODO(student): one case per face, from the README's table (OpenGL's cube-map face
+    // selection, read backwards). For +x the answer is vec3(1.0, -tc, -sc).
+    return vec3(0.0, 0.0, 1.0);
+}
+
+void main() {
+    // TODO(student): the direction n of this output texel, from u_cube_face and v_uv.
+    vec3 n = vec3(0.0, 0.0, 1.0);
+
+    vec3 sum = vec3(0.0);
+    const float step = 2.0 / float(kSkySize);
+    for (int face = 0; face < 6; ++face) {
+        for (int j = 0; j < kSkySize; ++j) {
+            for (int i = 0; i < kSkySize; ++i) {
+                // Texel (i, j) spans [u0, u0 + step] x [v0, v0 + step] of the face plane.
+                float u0 = float(i) * step - 1.0;
+                float v0 = float(j) * step - 1.0;
+
+                // TODO(student): the texel's direction w (through its centre), its radiance
+                // texture(u_sky_small, w).rgb, its solid angle, and add
+                // radiance * max(n . w, 0) * solid_angle to sum (w normalised for the dot).
+            }
+        }
+    }
+    // TODO(student): normalise so that a constant sky gives back its constant.
+    o_color = vec4(sum, 1.0);
+}

@@ -1,0 +1,42 @@
+#version 330 core
+// Diffuse irradiance map: every sky texel weighted by Lambert's cosine max(n.w, 0); dividing by
+// the sum of the weights makes a constant sky come out as that constant.
+
+in vec2 v_uv;
+
+uniform int u_cube_face;
+uniform samplerCube u_sky_small;
+
+out vec4 o_color;
+
+const int kSkySize = 16;
+
+vec3 faceDirection(int face, float sc, float tc) {
+    if (face == 0) return vec3(1.0, -tc, -sc);
+    if (face == 1) return vec3(-1.0, -tc, sc);
+    if (face == 2) return vec3(sc, 1.0, tc);
+    if (face == 3) return vec3(sc, -1.0, -tc);
+    if (face == 4) return vec3(sc, -tc, 1.0);
+    return vec3(-sc, -tc, -1.0);
+}
+
+void main() {
+    vec3 n = normalize(faceDirection(u_cube_face, 2.0 * v_uv.x - 1.0, 2.0 * v_uv.y - 1.0));
+
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (int face = 0; face < 6; ++face) {
+        for (int j = 0; j < kSkySize; ++j) {
+            for (int i = 0; i < kSkySize; ++i) {
+                // texel centre in [-1, 1]
+                float sc = (float(i) + 0.5) / float(kSkySize) * 2.0 - 1.0;
+                float tc = (float(j) + 0.5) / float(kSkySize) * 2.0 - 1.0;
+                vec3 w = normalize(faceDirection(face, sc, tc));
+                float cos_theta = max(dot(n, w), 0.0);
+                sum += texture(u_sky_small, w).rgb * cos_theta;
+                weight += cos_theta;
+            }
+        }
+    }
+    o_color = vec4(sum / weight, 1.0);
+}

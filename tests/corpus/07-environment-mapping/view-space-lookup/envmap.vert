@@ -1,0 +1,21 @@
+#version 330 core
+// Everything in eye space, where the eye sits at the origin: no camera position needed.
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+
+uniform mat4 u_model_view;
+uniform mat4 u_projection;
+uniform mat4 u_view;
+uniform mat3 u_normal_matrix;
+
+out vec3 v_view_position;
+out vec3 v_view_normal;
+
+void main() {
+    vec4 eye = u_model_view * vec4(a_position, 1.0);
+    v_view_position = eye.xyz;
+    // normal matrix (to world), then the view's rotation (to eye space)
+    v_view_normal = mat3(u_view) * (u_normal_matrix * a_normal);
+    gl_Position = u_projection * eye;
+}
