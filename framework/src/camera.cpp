@@ -87,6 +87,9 @@ std::string applyCameraOverride(const Scene& scene, const std::vector<ResolvedLi
     }
     if (o.position) c->position = *o.position;
     if (o.target) c->target = *o.target;
+    // A file camera's up is perpendicular to its own view (tilted when it looks down); moved
+    // elsewhere, it would roll the horizon. World +y unless the lab says otherwise.
+    if ((o.position || o.target) && !o.light) c->up = upFor(c->target - c->position);
     if (o.up) c->up = *o.up;
     moved = moved || o.position || o.target;
     if (o.projection) c->orthographic = *o.projection == Projection::Orthographic;

@@ -422,7 +422,11 @@ class LabRunner {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
 
-    bool prepare() { return readSources() && buildPrograms() && createTargets(); }
+    bool prepare() {
+        // Filtered cube-map lookups blend across face edges instead of clamping at them.
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        return readSources() && buildPrograms() && createTargets();
+    }
     bool renderScene(const SceneSpec& scene_spec);
 
   private:
