@@ -966,8 +966,9 @@ class Validator {
             if (t->type == TargetType::Cube && !p.graded.empty() &&
                 std::find(p.graded.begin(), p.graded.end(), "depth") != p.graded.end())
                 diag_.error(joinKey(p.path, "graded"), "a cube target's depth cannot be graded");
-            p.compare = d.compare.value_or(isFloatFormat(t->format) && !last ? CompareMode::Hdr
-                                                                             : CompareMode::Display);
+            p.compare = d.compare.value_or(!p.graded.empty() && isFloatFormat(t->format) && !last
+                                               ? CompareMode::Hdr
+                                               : CompareMode::Display);
         }
     }
 
