@@ -698,6 +698,7 @@ class Validator {
         resolvePassTargets();
         buildLoops();
         checkInputs();
+        checkPassReferences();
         checkGraded();
         checkCameras();
         checkScenes();
@@ -904,6 +905,31 @@ class Validator {
                 checkReadOrder(i, in);
             }
         }
+    }
+
+    // "@<pass>.view_projection" and the like, anywhere in a uniform value of a pass or a scene:
+    // the pass must exist.
+    void checkPassReferences() {
+        std::vector<std::string> names;
+        for (const PassSpec& p : spec_.passes) names.push_back(p.name);
+        const auto check = [&](const auto& self, const json& v, const std::string& path) -> void {
+            if (v.is_string()) {
+                const std::string s = v;
+                const std::size_t dot = s.rfind('.');
+                if (s.empty() || s[0] != '@' || dot == std::string::npos) return;
+                const std::string pass = s.substr(1, dot - 1);
+                if (passIndex(pass) < 0)
+                    diag_.error(path, "no pass is called " + quoteJson(pass) + didYouMean(pass, names));
+            } else if (v.is_array()) {
+                for (std::size_t k = 0; k < v.size(); ++k) self(self, v[k], joinIndex(path, k));
+            } else if (v.is_object()) {
+                for (const auto& item : v.items()) self(self, item.value(), joinKey(path, item.key()));
+            }
+        };
+        for (const PassSpec& p : spec_.passes)
+            for (const UniformSetting& u : p.uniforms) check(check, u.value, u.path);
+        for (const SceneSpec& s : spec_.scenes)
+            for (const UniformSetting& u : s.uniforms) check(check, u.value, u.path);
     }
 
     // A pass reads what earlier passes wrote. Inside a repeat group a pass may also read what
