@@ -1338,8 +1338,11 @@ LabSpecResult parseLabSpec(const std::string& lab_dir) {
     }
     const FileText t = readFile(file.string(), kMaxLabJsonBytes);
     if (!t.ok) {
+        // readFile names the file itself; the message names it once, as the origin.
+        std::string problem = fs::exists(file, ec) ? t.error : "file not found";
+        if (problem.rfind(origin + ": ", 0) == 0) problem.erase(0, origin.size() + 2);
         LabSpecResult r;
-        r.errors.push_back(origin + ": " + (fs::exists(file, ec) ? t.error : "file not found"));
+        r.errors.push_back(origin + ": " + problem);
         return r;
     }
     return parse(t.text, origin, lab_dir, true);
