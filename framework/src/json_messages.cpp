@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -41,6 +42,9 @@ std::string quoteJson(const std::string& s) {
 }
 
 std::string formatNumber(double d) {
+    // Integers in full ("4194304", not "4.1943e+06"), other values to six significant digits.
+    if (std::isfinite(d) && std::floor(d) == d && std::fabs(d) < 1e15)
+        return std::to_string(static_cast<long long>(d));
     std::ostringstream s;
     s << d;
     return s.str();

@@ -322,7 +322,7 @@ class Explainer {
                 explain(nodes, unmatched, key, joinKey(path, item.key()), key_problems);
                 for (SchemaProblem& p : key_problems) {
                     if (p.problem.rfind("expected ", 0) == 0)
-                        p.problem = "the name " + p.problem.substr(0, p.problem.rfind(", got "));
+                        p.problem = "the name must be " + p.problem.substr(9, p.problem.rfind(", got ") - 9);
                     else
                         p.problem = quoteJson(item.key()) + " " + p.problem;
                     out.push_back(std::move(p));
@@ -368,9 +368,22 @@ std::vector<SchemaProblem> JsonSchemaChecker::check(const json& document) const 
     std::vector<std::vector<std::string>> contexts;
     std::vector<std::pair<std::vector<std::string>, std::string>> leaf_errors;
     valijson::ValidationResults::Error error;
+    auto addContext = [&contexts](const std::vector<std::string>& context) {
+        if (std::find(contexts.begin(), contexts.end(), context) == contexts.end())
+            contexts.push_back(context);
+    };
     while (results.popError(error)) {
-        if (std::find(contexts.begin(), contexts.end(), error.context) == contexts.end())
-            contexts.push_back(error.context);
+        addContext(error.context);
+        // A member whose own value fails without a context of its own (valijson reports a key
+        // refused by "propertyNames" only as a failure of the member that holds the object):
+        // explain the member too.
+        const std::string member = "Failed to validate against schema associated with property name '";
+        if (error.description.rfind(member, 0) == 0 && error.description.size() > member.size() + 2) {
+            std::vector<std::string> child = error.context;
+            const std::size_t close = error.description.rfind('\'');
+            child.push_back("[" + error.description.substr(member.size(), close - member.size()) + "]");
+            addContext(child);
+        }
         if (!isWrapper(error.description)) leaf_errors.emplace_back(error.context, error.description);
     }
 

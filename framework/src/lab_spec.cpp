@@ -401,6 +401,7 @@ class Reader {
         const std::string path = passPath(i);
         PassDraft& d = drafts_[i];
         d.dom = raw;
+        bool template_found = true;
         if (raw.contains("extends")) {
             d.template_name = raw["extends"];
             const json* templates = doc_.contains("templates") ? &doc_["templates"] : nullptr;
@@ -410,6 +411,7 @@ class Reader {
                     for (const auto& item : templates->items()) names.push_back(item.key());
                 diag_.error(joinKey(path, "extends"), "no template is called " + quoteJson(d.template_name) +
                                                           didYouMean(d.template_name, names));
+                template_found = false;  // what it lacks may be the template's: say nothing of it
             } else {
                 d.dom = mergeTemplate((*templates)[d.template_name], raw);
             }
@@ -425,10 +427,10 @@ class Reader {
         else
             diag_.error(joinKey(path, "name"), "is required");
         if (!v.contains("program")) {
-            diag_.error(joinKey(path, "program"), "is required" + from);
+            if (template_found) diag_.error(joinKey(path, "program"), "is required" + from);
         } else {
             for (const char* stage : {"vertex", "fragment"}) {
-                if (!v["program"].contains(stage))
+                if (template_found && !v["program"].contains(stage))
                     diag_.error(joinKey(joinKey(path, "program"), stage), "is required" + from);
             }
             p.program.vertex = v["program"].value("vertex", "");
@@ -698,6 +700,7 @@ class Validator {
         resolvePassTargets();
         buildLoops();
         checkInputs();
+        checkPassReferences();
         checkGraded();
         checkCameras();
         checkScenes();
@@ -842,9 +845,10 @@ class Validator {
                               : quoteJson(d.repeat_from) +
                                     " comes after this pass; \"from\" names the first pass of the group, "
                                     "which ends at this pass");
-                    continue;
+                } else {
+                    loop.first = static_cast<std::size_t>(j);
                 }
-                loop.first = static_cast<std::size_t>(j);
+                // A bad "from" still leaves a repeated pass (alone), so its reads are judged as such.
             }
             bool overlap = false;
             for (std::size_t k = loop.first; k <= loop.last; ++k) {
@@ -887,11 +891,13 @@ class Validator {
                     continue;
                 }
                 if (in.attachment == "depth") {
-                    if (in.target == p.target)
+                    if (in.target == p.target) {
                         diag_.error(in.path,
                                     "reads the depth of the target this pass draws into; depth is not "
                                     "ping-ponged, so draw the depth in an earlier pass");
-                    else if (t->depth != DepthMode::Texture)
+                        continue;
+                    }
+                    if (t->depth != DepthMode::Texture)
                         diag_.error(in.path,
                                     "reads the depth of target " + quoteJson(t->name) +
                                         ", which cannot be sampled: give the target \"depth\": \"texture\"");
@@ -904,6 +910,31 @@ class Validator {
                 checkReadOrder(i, in);
             }
         }
+    }
+
+    // "@<pass>.view_projection" and the like, anywhere in a uniform value of a pass or a scene:
+    // the pass must exist.
+    void checkPassReferences() {
+        std::vector<std::string> names;
+        for (const PassSpec& p : spec_.passes) names.push_back(p.name);
+        const auto check = [&](const auto& self, const json& v, const std::string& path) -> void {
+            if (v.is_string()) {
+                const std::string s = v;
+                const std::size_t dot = s.rfind('.');
+                if (s.empty() || s[0] != '@' || dot == std::string::npos) return;
+                const std::string pass = s.substr(1, dot - 1);
+                if (passIndex(pass) < 0)
+                    diag_.error(path, "no pass is called " + quoteJson(pass) + didYouMean(pass, names));
+            } else if (v.is_array()) {
+                for (std::size_t k = 0; k < v.size(); ++k) self(self, v[k], joinIndex(path, k));
+            } else if (v.is_object()) {
+                for (const auto& item : v.items()) self(self, item.value(), joinKey(path, item.key()));
+            }
+        };
+        for (const PassSpec& p : spec_.passes)
+            for (const UniformSetting& u : p.uniforms) check(check, u.value, u.path);
+        for (const SceneSpec& s : spec_.scenes)
+            for (const UniformSetting& u : s.uniforms) check(check, u.value, u.path);
     }
 
     // A pass reads what earlier passes wrote. Inside a repeat group a pass may also read what
@@ -940,12 +971,14 @@ class Validator {
         for (std::size_t i = 0; i < spec_.passes.size(); ++i) {
             PassSpec& p = spec_.passes[i];
             const PassDraft& d = drafts_[i];
-            const TargetSpec* t = spec_.findTarget(p.target);
-            if (!t) continue;
             const bool last = i + 1 == spec_.passes.size();
+            // Whether a pass is graded does not depend on its target (only which images are).
+            if (last || !d.graded_list.empty() || d.graded_flag.value_or(false)) graded_.push_back(p.name);
             if (last && d.graded_flag && !*d.graded_flag)
                 diag_.error(joinKey(p.path, "graded"),
                             "the last pass is the lab's result and is always graded; leave \"graded\" out");
+            const TargetSpec* t = spec_.findTarget(p.target);
+            if (!t) continue;
             if (!d.graded_list.empty()) {
                 for (const std::string& a : d.graded_list) {
                     if (a == "depth") {
@@ -960,14 +993,15 @@ class Validator {
                     }
                 }
                 p.graded = d.graded_list;
-            } else if (d.graded_flag.value_or(last)) {
+            } else if (last || d.graded_flag.value_or(false)) {  // "false" on the last pass is an error
                 p.graded = t->attachments;
             }
             if (t->type == TargetType::Cube && !p.graded.empty() &&
                 std::find(p.graded.begin(), p.graded.end(), "depth") != p.graded.end())
                 diag_.error(joinKey(p.path, "graded"), "a cube target's depth cannot be graded");
-            p.compare = d.compare.value_or(isFloatFormat(t->format) && !last ? CompareMode::Hdr
-                                                                             : CompareMode::Display);
+            p.compare = d.compare.value_or(!p.graded.empty() && isFloatFormat(t->format) && !last
+                                               ? CompareMode::Hdr
+                                               : CompareMode::Display);
         }
     }
 
@@ -1039,9 +1073,7 @@ class Validator {
     }
 
     void checkGoals() {
-        std::vector<std::string> graded;
-        for (const PassSpec& p : spec_.passes)
-            if (!p.graded.empty()) graded.push_back(p.name);
+        const std::vector<std::string>& graded = graded_;
         if (spec_.goals.empty()) {
             // One goal per scene, sharing the lab's points.
             const float share =
@@ -1060,6 +1092,7 @@ class Validator {
         }
         std::set<std::string> ids, covered;
         float total = 0.0f;
+        bool references_ok = true;  // else which images the goals check is unknown: no more messages
         for (std::size_t i = 0; i < spec_.goals.size(); ++i) {
             GoalSpec& g = spec_.goals[i];
             const std::string path = joinIndex("goals", i);
@@ -1084,6 +1117,7 @@ class Validator {
                         for (const SceneSpec& s : spec_.scenes) names.push_back(s.base_name);
                         diag_.error(joinIndex(joinKey(path, "scenes"), k),
                                     "no scene is called " + quoteJson(name) + didYouMean(name, names));
+                        references_ok = false;
                     }
                 }
             }
@@ -1102,12 +1136,14 @@ class Validator {
                                 ? "no pass is called " + quoteJson(name) + didYouMean(name, all)
                                 : "pass " + quoteJson(name) +
                                       " is not graded; mark it \"graded\": true to grade a goal on it");
+                        references_ok = false;
                     }
                 }
             }
             covered.insert(g.scenes.begin(), g.scenes.end());
         }
         spec_.grading.points = total;
+        if (!references_ok) return;
         // Every graded image counts toward some goal: otherwise a lab could fail with full marks.
         for (const std::string& pass : graded) {
             std::vector<std::string> unchecked;
@@ -1208,6 +1244,7 @@ class Validator {
     std::vector<PassDraft>& drafts_;
     Diagnostics& diag_;
     bool check_disk_;
+    std::vector<std::string> graded_;  // names of the graded passes, in pass order
 };
 
 // =============================================================================================
@@ -1301,8 +1338,11 @@ LabSpecResult parseLabSpec(const std::string& lab_dir) {
     }
     const FileText t = readFile(file.string(), kMaxLabJsonBytes);
     if (!t.ok) {
+        // readFile names the file itself; the message names it once, as the origin.
+        std::string problem = fs::exists(file, ec) ? t.error : "file not found";
+        if (problem.rfind(origin + ": ", 0) == 0) problem.erase(0, origin.size() + 2);
         LabSpecResult r;
-        r.errors.push_back(origin + ": " + (fs::exists(file, ec) ? t.error : "file not found"));
+        r.errors.push_back(origin + ": " + problem);
         return r;
     }
     return parse(t.text, origin, lab_dir, true);
