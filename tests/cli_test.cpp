@@ -152,6 +152,25 @@ TEST(CliMultiPass, ReportNamesTheFirstWrongPass) {
     }
 }
 
+// A scene's thresholds reach the grader: loosened for the only scene, the wrong second pass
+// passes; the lab's defaults fail it (above).
+TEST(CliMultiPass, SceneThresholdsApplyToThatScenesImages) {
+    const fs::path data = fs::path(SHADERLAB_SOURCE_DIR) / "tests/data/multipass";
+    const fs::path labs = scratch("scene_thresholds_labs");
+    fs::create_directories(labs);
+    fs::copy(fs::path(SHADERLAB_SOURCE_DIR) / "labs/scenes", labs / "scenes", fs::copy_options::recursive);
+    fs::copy(data / "labs/90-two-pass", labs / "90-two-pass", fs::copy_options::recursive);
+    json lab = readJson(labs / "90-two-pass/lab.json");
+    lab["scenes"][0]["thresholds"] = {
+        {"psnr_min_db", 0}, {"ssim_min", 0}, {"flip_mean_max", 1}, {"mismatch_max", 1}};
+    std::ofstream(labs / "90-two-pass/lab.json") << lab.dump(2);
+    const fs::path out = scratch("scene_thresholds_out");
+    const CliRun run = runCli("grade " + (data / "wrong-second-pass").string() + " --labs " + labs.string() +
+                              " --reference " + (data / "reference").string() + " --out " + out.string());
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(readJson(out / "report.json")["labs"][0]["status"], "passed");
+}
+
 // Without the reference solution the stored goldens grade: the reference passes against them.
 TEST(CliGoldens, ReferencePassesAgainstGoldens) {
     const fs::path out = scratch("goldens_grade");

@@ -248,6 +248,23 @@ TEST_F(LabFeatures, GeneratedTexturesAreDeterministic) {
     EXPECT_GT(hi - lo, 0.5f);  // noise, not a constant
 }
 
+// "srgb": true decodes the file's values to linear when sampling (IEC 61966-2-1).
+TEST_F(LabFeatures, SrgbTextureIsDecodedWhenSampled) {
+    png("half.png", grader::Image(2, 2, 3, 128.0f / 255.0f));
+    write("read.frag",
+          fragment("uniform sampler2D u_plain; uniform sampler2D u_srgb;",
+                   "o_color = vec4(texture(u_plain, v_uv).r, texture(u_srgb, v_uv).r, 0.0, 1.0);"));
+    const auto r = render(
+        fullscreenLab(R"({"name": "read", "program": {"vertex": "fullscreen.vert", "fragment": "read.frag"},
+        "draw": "fullscreen", "inputs": {"u_plain": {"texture": "half.png"}, "u_srgb": {"texture": "half.png", "srgb": true}}})",
+                      2, 2));
+    ASSERT_EQ(r.status, RenderStatus::Ok) << diagnostics(r);
+    const float encoded = 128.0f / 255.0f;
+    const float linear = std::pow((encoded + 0.055f) / 1.055f, 2.4f);  // about 0.216
+    EXPECT_NEAR(image(r, "read").at(0, 0, 0), encoded, 1e-4f);
+    EXPECT_NEAR(image(r, "read").at(0, 0, 1), linear, 2e-3f);
+}
+
 TEST_F(LabFeatures, SamplerTypeTheLabCannotFeedIsALinkError) {
     write("bad.frag",
           fragment("uniform samplerCube u_image;", "o_color = texture(u_image, vec3(v_uv, 1.0));"));
@@ -435,6 +452,20 @@ TEST_F(LabFeatures, RepeatedPassReadsItsOwnPreviousResult) {
     r = render(per_scene);
     ASSERT_EQ(r.status, RenderStatus::Ok) << diagnostics(r);
     EXPECT_FLOAT_EQ(image(r, "step").at(0, 0, 0), 3.0f);
+}
+
+// An effect applied in place: a pass reads the target it draws into, which an earlier pass drew.
+TEST_F(LabFeatures, PassReadsTheTargetItDrawsIntoAfterAnEarlierPass) {
+    write("quarter.frag", fragment("", "o_color = vec4(0.25);"));
+    write("twice.frag", fragment("uniform sampler2D u_in;", "o_color = texture(u_in, v_uv) * 2.0;"));
+    const auto r = render(fullscreenLab(R"(
+        {"name": "first", "program": {"vertex": "fullscreen.vert", "fragment": "quarter.frag"}, "draw": "fullscreen",
+         "target": {"depth": "none"}},
+        {"name": "again", "program": {"vertex": "fullscreen.vert", "fragment": "twice.frag"}, "draw": "fullscreen",
+         "target": "first", "inputs": {"u_in": "first"}})",
+                                        2, 2));
+    ASSERT_EQ(r.status, RenderStatus::Ok) << diagnostics(r);
+    EXPECT_FLOAT_EQ(image(r, "again").at(0, 0, 0), 0.5f);
 }
 
 TEST_F(LabFeatures, RepeatGroupFeedsItsResultBackIntoTheNextIteration) {

@@ -621,6 +621,28 @@ TEST_F(LabSpecParse, MinimalSpecGetsTheDocumentedDefaults) {
     EXPECT_FLOAT_EQ(s.grading.thresholds.pixel_tolerance, 0.05f);
 }
 
+// Thresholds apply lab, then pass, then scene; a scene changes only what it names.
+TEST_F(LabSpecParse, SceneThresholdsOverrideThePassesForThatScene) {
+    const LabSpecResult r = parseText(R"({
+      "schema": 2, "id": "01-phong",
+      "passes": [{"name": "shade", "program": {"vertex": "phong.vert", "fragment": "phong.frag"},
+                  "thresholds": {"psnr_min_db": 25}}],
+      "scenes": [{"name": "strict", "file": "scenes/sphere.gltf"},
+                 {"name": "loose", "file": "scenes/sphere.gltf", "thresholds": {"mismatch_max": 0.08}}],
+      "grading": {"ssim_min": 0.9}
+    })");
+    ASSERT_TRUE(r.ok) << allErrors(r);
+    const shaderlab::GradingThresholds strict =
+        r.spec.scenes[0].thresholds.applyTo(r.spec.passes[0].thresholds);
+    const shaderlab::GradingThresholds loose =
+        r.spec.scenes[1].thresholds.applyTo(r.spec.passes[0].thresholds);
+    EXPECT_FLOAT_EQ(strict.psnr_min_db, 25.0f);
+    EXPECT_FLOAT_EQ(strict.ssim_min, 0.9f);
+    EXPECT_FLOAT_EQ(strict.mismatch_max, 0.01f);
+    EXPECT_FLOAT_EQ(loose.psnr_min_db, 25.0f);
+    EXPECT_FLOAT_EQ(loose.mismatch_max, 0.08f);
+}
+
 TEST_F(LabSpecParse, ImplicitGoalsShareThePointsOverEveryExpandedScene) {
     json spec = json::parse(kMinimalSpec);
     spec["scenes"] = json::parse(R"([{"name": "spin", "file": "scenes/teapot.gltf", "times": [0, 1, 2]},
@@ -1269,7 +1291,8 @@ const std::vector<BrokenCase> kBrokenCases = {
     {"ReadsItsOwnTargetOutsideARepeat",
      {{"/passes/4/inputs/u_self", "\"final\""}},
      "passes[4].inputs.u_self",
-     "reads target \"final\", which this pass draws into; only a repeated pass can read its own target"},
+     "reads target \"final\", which this pass draws into and no earlier pass drew: there is nothing to read "
+     "yet, unless the pass is repeated"},
     {"SamplerAlsoAUniform",
      {{"/passes/2/uniforms/u_ramp", "1"}},
      "passes[2].inputs.u_ramp",

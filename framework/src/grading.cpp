@@ -289,12 +289,18 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             const PassImage& theirs = ref_it->second[i];
             const GradedImage& g = graded[i];
             const bool final_image = i + 1 == scene.passes.size();
+            // The lab's thresholds, then the pass's, then the scene's.
+            const SceneSpec* scene_spec = nullptr;
+            for (const SceneSpec& candidate : spec.scenes)
+                if (candidate.name == scene.scene) scene_spec = &candidate;
+            const GradingThresholds t =
+                scene_spec ? scene_spec->thresholds.applyTo(g.pass->thresholds) : g.pass->thresholds;
             grader::Thresholds thresholds;
-            thresholds.psnr_min_db = g.pass->thresholds.psnr_min_db;
-            thresholds.ssim_min = g.pass->thresholds.ssim_min;
-            thresholds.flip_mean_max = g.pass->thresholds.flip_mean_max;
-            thresholds.mismatch_max = g.pass->thresholds.mismatch_max;
-            thresholds.pixel_tolerance = g.pass->thresholds.pixel_tolerance;
+            thresholds.psnr_min_db = t.psnr_min_db;
+            thresholds.ssim_min = t.ssim_min;
+            thresholds.flip_mean_max = t.flip_mean_max;
+            thresholds.mismatch_max = t.mismatch_max;
+            thresholds.pixel_tolerance = t.pixel_tolerance;
             const grader::ImageVerdict v =
                 grader::judgeImage(theirs.color, theirs.coverage, mine.color, mine.coverage, thresholds,
                                    g.hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);

@@ -640,6 +640,15 @@ class Reader {
         if (v.contains("time")) s.time = v["time"];
         if (v.contains("repeats"))
             for (const auto& item : v["repeats"].items()) s.repeats[item.key()] = item.value();
+        if (v.contains("thresholds")) {
+            const json& t = v["thresholds"];
+            ThresholdOverrides& o = s.thresholds;
+            if (t.contains("psnr_min_db")) o.psnr_min_db = t["psnr_min_db"].get<float>();
+            if (t.contains("ssim_min")) o.ssim_min = t["ssim_min"].get<float>();
+            if (t.contains("flip_mean_max")) o.flip_mean_max = t["flip_mean_max"].get<float>();
+            if (t.contains("mismatch_max")) o.mismatch_max = t["mismatch_max"].get<float>();
+            if (t.contains("pixel_tolerance")) o.pixel_tolerance = t["pixel_tolerance"].get<float>();
+        }
         if (v.contains("times")) {
             const json& times = v["times"];
             for (std::size_t k = 0; k < times.size(); ++k) {
@@ -956,9 +965,11 @@ class Validator {
         }
         const std::size_t j = writers.front();
         if (j == i)
-            diag_.error(in.path, "reads target " + quoteJson(in.target) +
-                                     ", which this pass draws into; only a repeated pass can read its own "
-                                     "target (it then reads the previous iteration's result)");
+            diag_.error(in.path,
+                        "reads target " + quoteJson(in.target) +
+                            ", which this pass draws into and no earlier pass drew: there is nothing "
+                            "to read yet, unless the pass is repeated (it then reads the previous "
+                            "iteration's result)");
         else
             diag_.error(in.path,
                         "reads target " + quoteJson(in.target) + ", which is first drawn by " + passPath(j) +
@@ -1299,6 +1310,15 @@ LabSpecResult parse(const std::string& text, const std::string& origin, const st
 }  // namespace
 
 bool isFloatFormat(TargetFormat f) { return f == TargetFormat::RGBA16F || f == TargetFormat::RGBA32F; }
+
+GradingThresholds ThresholdOverrides::applyTo(GradingThresholds t) const {
+    if (psnr_min_db) t.psnr_min_db = *psnr_min_db;
+    if (ssim_min) t.ssim_min = *ssim_min;
+    if (flip_mean_max) t.flip_mean_max = *flip_mean_max;
+    if (mismatch_max) t.mismatch_max = *mismatch_max;
+    if (pixel_tolerance) t.pixel_tolerance = *pixel_tolerance;
+    return t;
+}
 
 bool CameraOverride::any() const {
     return position || target || up || fov_y_deg || z_near || z_far || projection || height || light;

@@ -123,6 +123,12 @@ struct GradingThresholds {
     float pixel_tolerance = 0.05f;  // per-channel tolerance of the shift-tolerant comparison
 };
 
+// Thresholds a scene changes for its images, on top of the lab's and the pass's.
+struct ThresholdOverrides {
+    std::optional<float> psnr_min_db, ssim_min, flip_mean_max, mismatch_max, pixel_tolerance;
+    GradingThresholds applyTo(GradingThresholds t) const;
+};
+
 struct PassSpec {
     std::string name;
     ProgramSpec program;
@@ -167,6 +173,7 @@ struct SceneSpec {
     UniformList uniforms;                          // per-scene uniform overrides
     float time = 0.0f;                             // value of u_time
     std::map<std::string, int> repeats;            // loop count overrides, by declaring pass
+    ThresholdOverrides thresholds;                 // for every graded image of this scene
     std::string path;
 };
 
