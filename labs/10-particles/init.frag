@@ -25,5 +25,6 @@ void main() {
     vec3 r = texelFetch(u_noise_position, texel, 0).xyz;
     vec3 s = texelFetch(u_noise_velocity, texel, 0).xyz;
     o_position = vec4(u_spawn_min + r * (u_spawn_max - u_spawn_min), 1.0);
-    o_velocity = vec4(u_velocity_mean + (2.0 * s - 1.0) * u_velocity_spread, 0.0);
+    // w = 1 is unused; it keeps the state PNGs of `render --all-passes` opaque.
+    o_velocity = vec4(u_velocity_mean + (2.0 * s - 1.0) * u_velocity_spread, 1.0);
 }
