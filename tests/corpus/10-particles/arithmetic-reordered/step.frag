@@ -12,8 +12,8 @@
 // pass; they are named here only because the framework warns about a scene uniform that a pass's
 // shaders never mention.)
 
-uniform sampler2D u_state_position;  // xyz: position, w: 1
-uniform sampler2D u_state_velocity;  // xyz: velocity, w: 0
+uniform sampler2D u_state_position;  // xyz: position, w: 1 (unused)
+uniform sampler2D u_state_velocity;  // xyz: velocity, w: 1 (unused)
 
 uniform float u_dt;           // seconds per step
 uniform vec3 u_gravity;       // m/s^2
@@ -29,9 +29,11 @@ void main() {
     vec3 x = texelFetch(u_state_position, texel, 0).xyz;
     vec3 v = texelFetch(u_state_velocity, texel, 0).xyz;
 
-    // The spring as -k (x - c); each update as += with dt on the right.
-    v += (u_gravity - u_attraction * (x - u_attractor)) * u_dt;
-    x += v * u_dt;
+    // v' = v + h a, and x' = x + h v' = x + h v + h (h a): the same step, expanded.
+    vec3 a = u_gravity + u_attraction * u_attractor - u_attraction * x;
+    vec3 dv = u_dt * a;
+    x += u_dt * v + u_dt * dv;
+    v += dv;
 
     for (int i = 0; i < 3; ++i) {
         if (x[i] < 0.0) {
@@ -44,5 +46,5 @@ void main() {
     }
 
     o_position = vec4(x, 1.0);
-    o_velocity = vec4(v, 0.0);
+    o_velocity = vec4(v, 1.0);
 }

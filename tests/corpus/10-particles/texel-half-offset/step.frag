@@ -12,8 +12,8 @@
 // pass; they are named here only because the framework warns about a scene uniform that a pass's
 // shaders never mention.)
 
-uniform sampler2D u_state_position;  // xyz: position, w: 1
-uniform sampler2D u_state_velocity;  // xyz: velocity, w: 0
+uniform sampler2D u_state_position;  // xyz: position, w: 1 (unused)
+uniform sampler2D u_state_velocity;  // xyz: velocity, w: 1 (unused)
 
 uniform vec2 u_resolution;    // the state's size in texels
 uniform float u_dt;           // seconds per step
@@ -48,5 +48,5 @@ void main() {
     }
 
     o_position = vec4(x, 1.0);
-    o_velocity = vec4(v, 0.0);
+    o_velocity = vec4(v, 1.0);
 }

@@ -14,8 +14,8 @@
 
 in vec2 v_uv;
 
-uniform sampler2D u_state_position;  // xyz: position, w: 1
-uniform sampler2D u_state_velocity;  // xyz: velocity, w: 0
+uniform sampler2D u_state_position;  // xyz: position, w: 1 (unused)
+uniform sampler2D u_state_velocity;  // xyz: velocity, w: 1 (unused)
 
 uniform float u_dt;           // seconds per step
 uniform vec3 u_gravity;       // m/s^2
@@ -48,5 +48,5 @@ void main() {
     }
 
     o_position = vec4(x, 1.0);
-    o_velocity = vec4(v, 0.0);
+    o_velocity = vec4(v, 1.0);
 }

@@ -12,8 +12,8 @@
 // pass; they are named here only because the framework warns about a scene uniform that a pass's
 // shaders never mention.)
 
-uniform sampler2D u_state_position;  // xyz: position, w: 1
-uniform sampler2D u_state_velocity;  // xyz: velocity, w: 0
+uniform sampler2D u_state_position;  // xyz: position, w: 1 (unused)
+uniform sampler2D u_state_velocity;  // xyz: velocity, w: 1 (unused)
 
 uniform float u_dt;           // seconds per step
 uniform vec3 u_gravity;       // m/s^2
@@ -42,5 +42,5 @@ void main() {
     x = inside;
 
     o_position = vec4(x, 1.0);
-    o_velocity = vec4(v, 0.0);
+    o_velocity = vec4(v, 1.0);
 }
