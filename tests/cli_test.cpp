@@ -22,9 +22,11 @@ struct CliRun {
     std::string output;
 };
 
-CliRun runCli(const std::string& args) {
+// Runs the program with `args` from the working directory `cwd` (default: the test's own).
+CliRun runCli(const std::string& args, const std::string& cwd = "") {
     CliRun r;
-    const std::string cmd = std::string(SHADERLAB_CLI) + " " + args + " 2>&1";
+    const std::string cmd = (cwd.empty() ? std::string() : "cd '" + cwd + "' && ") +
+                            std::string(SHADERLAB_CLI) + " " + args + " 2>&1";
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
     char buf[4096];
@@ -51,11 +53,73 @@ TEST(CliExitCodes, CheckPassesTheReferenceAndFailsTheStarter) {
     const CliRun good = runCli("check 01-phong --submission " + ref + " --out " + out.string());
     EXPECT_EQ(good.exit_code, 0) << good.output;
     EXPECT_NE(good.output.find("PASS"), std::string::npos) << good.output;
-    const CliRun bad = runCli("check 01-phong --out " + out.string());  // the starter code in labs/
+    const std::string labs = (fs::path(SHADERLAB_SOURCE_DIR) / "labs").string();
+    const CliRun bad =
+        runCli("check 01-phong --submission " + labs + " --out " + out.string());  // the starter
     EXPECT_EQ(bad.exit_code, 1) << bad.output;
     EXPECT_NE(bad.output.find("FAIL"), std::string::npos) << bad.output;
     // Not a terminal: no colour escapes in the output.
     EXPECT_EQ(bad.output.find("\033["), std::string::npos);
+}
+
+// A course copied elsewhere grades its own files: `check` finds the course from the current
+// folder upward (not from where the program was built), grades the student's work/ copy made by
+// `start`, and names the folder and files it graded.
+TEST(CliCheck, GradesTheCopiedCourseItRunsIn) {
+    const fs::path course = scratch("course_copy");
+    for (const char* folder : {"labs/01-phong", "labs/scenes", "labs/shared", "reference_solutions/01-phong"}) {
+        fs::create_directories((course / folder).parent_path());
+        fs::copy(fs::path(SHADERLAB_SOURCE_DIR) / folder, course / folder, fs::copy_options::recursive);
+    }
+    const fs::path deep = course / "work";
+    fs::create_directories(deep);
+    // Before `start` there is nothing to check, and check says what to do.
+    const CliRun early = runCli("check 01-phong", deep.string());
+    EXPECT_EQ(early.exit_code, 2) << early.output;
+    EXPECT_NE(early.output.find("shaderlab start 01-phong"), std::string::npos) << early.output;
+
+    const CliRun start = runCli("start 01-phong", deep.string());
+    ASSERT_EQ(start.exit_code, 0) << start.output;
+    ASSERT_TRUE(fs::is_regular_file(course / "work/01-phong/phong.frag"));
+    // The starter code fails; solved in the copy, it passes; the source tree is never read.
+    CliRun check = runCli("check 01-phong --out " + (course / "out").string(), deep.string());
+    EXPECT_EQ(check.exit_code, 1) << check.output;
+    for (const char* f : {"phong.vert", "phong.frag"})
+        fs::copy_file(course / "reference_solutions/01-phong" / f, course / "work/01-phong" / f,
+                      fs::copy_options::overwrite_existing);
+    check = runCli("check 01-phong --out " + (course / "out").string(), deep.string());
+    EXPECT_EQ(check.exit_code, 0) << check.output;
+    EXPECT_NE(check.output.find((course / "work/01-phong").string()), std::string::npos) << check.output;
+    EXPECT_NE(check.output.find("phong.vert, phong.frag"), std::string::npos) << check.output;
+    const json report = readJson(course / "out/report.json");
+    EXPECT_EQ(report["labs"][0]["folder"], (course / "work/01-phong").string());
+    EXPECT_EQ(report["labs"][0]["files"], json::array({"phong.vert", "phong.frag"}));
+    // `start` keeps work that is there.
+    EXPECT_EQ(runCli("start 01-phong", deep.string()).exit_code, 2);
+    EXPECT_EQ(runCli("start 01-phong --force", deep.string()).exit_code, 0);
+}
+
+TEST(CliCheck, OutsideACourseItSaysSo) {
+    const fs::path empty = scratch("no_course");
+    fs::create_directories(empty);
+    const CliRun run = runCli("check 01-phong", empty.string());
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_NE(run.output.find("no course here"), std::string::npos) << run.output;
+}
+
+// A shader that never finishes is stopped after the short default and the message says where.
+TEST(CliCheck, TimeoutNamesTheSceneAndPass) {
+    const fs::path sub = scratch("slow_sub");
+    fs::create_directories(sub / "01-phong");
+    fs::copy_file(fs::path(SHADERLAB_SOURCE_DIR) / "reference_solutions/01-phong/phong.vert",
+                  sub / "01-phong/phong.vert");
+    fs::copy_file(fs::path(SHADERLAB_SOURCE_DIR) / "tests/corpus/01-phong/endless-loop/phong.frag",
+                  sub / "01-phong/phong.frag");
+    const CliRun run = runCli("check 01-phong --submission " + sub.string() + " --timeout 2 --out " +
+                              scratch("slow_out").string());
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("while drawing pass 'shade' of scene 'sphere'"), std::string::npos)
+        << run.output;
 }
 
 TEST(CliExitCodes, BadArgumentsAndMissingInputsExitTwo) {

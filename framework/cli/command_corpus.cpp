@@ -211,7 +211,8 @@ Outcome judge(const std::string& lab, const Case& c, const grader::Report& repor
 }  // namespace
 
 int runCorpus(const CorpusArgs& args) {
-    const std::string labs_root = args.common.labs_root.empty() ? defaultLabsRoot() : args.common.labs_root;
+    std::string labs_root;
+    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
     const fs::path corpus = args.corpus_root.empty() ? fs::path(labs_root).parent_path() / "tests" / "corpus"
                                                      : fs::path(args.corpus_root);
     const fs::path reference_root = args.reference_root.empty()

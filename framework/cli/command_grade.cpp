@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "commands.h"
 #include "grader/report.h"
@@ -22,10 +23,6 @@ namespace fs = std::filesystem;
 namespace shaderlab::cli {
 
 namespace {
-
-std::string labsRootOf(const CommonOptions& c) {
-    return c.labs_root.empty() ? defaultLabsRoot() : c.labs_root;
-}
 
 std::string defaultReferenceRoot(const std::string& labs_root) {
     const fs::path p = fs::path(labs_root).parent_path() / "reference_solutions";
@@ -99,7 +96,7 @@ namespace {
 // lab.json is the command's problem (exit 2), not something to grade.
 bool selectLabs(const CommonOptions& common, const std::vector<std::string>& wanted, std::string* labs_root,
                 std::vector<std::string>* ids) {
-    *labs_root = labsRootOf(common);
+    if (!resolveLabsRoot(common, labs_root)) return false;
     *ids = wanted.empty() ? listLabIds(*labs_root) : wanted;
     if (ids->empty()) {
         std::cerr << "shaderlab: no labs found in " << *labs_root << "\n";
@@ -179,16 +176,44 @@ int runCheck(const CheckArgs& args) {
     if (!selectLabs(args.common, {args.lab}, &options.labs_root, &options.labs)) return 2;
     options.limits.timeout_s = args.timeout_s;
     if (!args.no_reference) options.reference_root = defaultReferenceRoot(options.labs_root);
-    const std::string submission = args.submission.empty() ? options.labs_root : args.submission;
+    // The student's own copy (shaderlab start), never the starter code in labs/.
+    const std::string submission = args.submission.empty() ? workRoot(options.labs_root) : args.submission;
+    std::error_code ec;
+    const fs::path lab_folder = fs::absolute(fs::path(submission) / args.lab, ec).lexically_normal();
+    if (!fs::is_directory(lab_folder, ec)) {
+        std::cerr << "shaderlab: " << lab_folder.string() << " does not exist";
+        if (args.submission.empty())
+            std::cerr << ": run `shaderlab start " << args.lab
+                      << "` first; it copies the starter code there for you "
+                      << "to edit";
+        std::cerr << "\n";
+        return 2;
+    }
     options.out_dir = args.out_dir.empty()
                           ? (fs::path(options.labs_root).parent_path() / "out" / "check").string()
                           : args.out_dir;
-    std::error_code ec;
     fs::create_directories(options.out_dir, ec);
     if (ec || !fs::is_directory(options.out_dir, ec)) {
         std::cerr << "shaderlab: " << options.out_dir << ": cannot create the output folder\n";
         return 2;
     }
+    const LabSpecResult parsed = parseLabSpec((fs::path(options.labs_root) / args.lab).string());
+    std::printf("checking %s (", lab_folder.string().c_str());
+    for (std::size_t i = 0; i < parsed.spec.student_files.size(); ++i)
+        std::printf("%s%s", i ? ", " : "", parsed.spec.student_files[i].c_str());
+    std::printf(") against %s\n",
+                options.reference_root.empty() ? "the stored golden images" : "the reference solution");
+    // One line per scene as the render goes, so a slow or stuck shader shows where it is.
+    const Palette c = palette();
+    options.progress = [&](const std::string&, const std::string& event) {
+        std::istringstream in(event);
+        std::string kind, scene;
+        double ms = 0.0;
+        in >> kind >> scene >> ms;
+        if (kind == "done")
+            std::printf("  %srendered%s %-28s %6.1f ms\n", c.bold, c.reset, scene.c_str(), ms);
+        std::fflush(stdout);
+    };
     grader::Report report = gradeSubmission(submission, options);
     report.tool_version = SHADERLAB_VERSION;
     for (const grader::ReportLab& lab : report.labs) printLab(lab, true);
@@ -242,7 +267,8 @@ int runCompare(const CompareArgs& args) {
 }
 
 int runGoldens(const GoldensArgs& args) {
-    const std::string labs_root = labsRootOf(args.common);
+    std::string labs_root;
+    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
     const std::string reference_root =
         args.reference_root.empty() ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
                                     : args.reference_root;

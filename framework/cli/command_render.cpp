@@ -43,7 +43,8 @@ int runInfo(const std::string& backend_name) {
 }
 
 int runRender(const RenderArgs& args) {
-    const std::string labs_root = args.common.labs_root.empty() ? defaultLabsRoot() : args.common.labs_root;
+    std::string labs_root;
+    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
     std::vector<std::string> ids = args.common.labs.empty() ? listLabIds(labs_root) : args.common.labs;
     if (ids.empty()) {
         std::cerr << "shaderlab: no labs found in " << labs_root << "\n";

@@ -14,6 +14,20 @@ struct CommonOptions {
     std::vector<std::string> labs;  // --lab, repeatable; empty: every lab the labs root has
 };
 
+// The labs folder a command works on: --labs, else $SHADERLAB_LABS, else the course found from
+// the current directory upward. Prints why and returns false when there is none.
+bool resolveLabsRoot(const CommonOptions& common, std::string* labs_root);
+// Where students work: <course>/work, beside labs/.
+std::string workRoot(const std::string& labs_root);
+
+struct StartArgs {
+    CommonOptions common;
+    std::string lab;
+    std::string into;  // empty: <course>/work
+    bool force = false;
+};
+int runStart(const StartArgs& args);
+
 struct RenderArgs {
     CommonOptions common;
     std::string submission;
@@ -38,10 +52,10 @@ int runGrade(const GradeArgs& args);
 struct CheckArgs {
     CommonOptions common;
     std::string lab;
-    std::string submission;  // empty: the labs folder itself (the student's working copy)
+    std::string submission;  // empty: <course>/work (see `shaderlab start`)
     std::string out_dir;     // empty: out/check beside the labs folder
     bool no_reference = false;
-    double timeout_s = 60.0;
+    double timeout_s = 10.0;  // short: a student waits on an endless loop
 };
 int runCheck(const CheckArgs& args);
 

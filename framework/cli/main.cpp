@@ -44,11 +44,20 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     add_common(grade_cmd, &grade.common);
 
+    StartArgs start;
+    CLI::App* start_cmd =
+        app.add_subcommand("start", "copy a lab's starter files into work/<lab>/, your own copy to edit");
+    start_cmd->add_option("lab", start.lab, "lab id, e.g. 01-phong")->required();
+    start_cmd->add_option("--into", start.into, "folder to copy into (default: work/ beside labs/)");
+    start_cmd->add_flag("--force", start.force, "overwrite files already there with the starter code");
+    start_cmd->add_option("--labs", start.common.labs_root, "folder holding the labs");
+
     CheckArgs check;
     CLI::App* check_cmd =
-        app.add_subcommand("check", "check one lab of your working copy and print a verdict");
+        app.add_subcommand("check", "check one lab of your work (work/<lab>/) and print a verdict");
     check_cmd->add_option("lab", check.lab, "lab id, e.g. 01-phong")->required();
-    check_cmd->add_option("--submission", check.submission, "folder mirroring labs/ (default: labs/ itself)");
+    check_cmd->add_option("--submission", check.submission,
+                          "folder mirroring labs/ (default: work/ beside labs/, made by `shaderlab start`)");
     check_cmd->add_option("--out", check.out_dir, "where images and the report go (default: out/check)");
     check_cmd->add_flag("--no-reference", check.no_reference, "use the stored golden images");
     check_cmd->add_option("--timeout", check.timeout_s, "seconds the lab may take to render")
@@ -104,6 +113,7 @@ int main(int argc, char** argv) {
     if (info_cmd->parsed()) return runInfo(info_backend);
     if (grade_cmd->parsed()) return runGrade(grade);
     if (check_cmd->parsed()) return runCheck(check);
+    if (start_cmd->parsed()) return runStart(start);
     if (compare_cmd->parsed()) return runCompare(compare);
     if (goldens_cmd->parsed()) return runGoldens(goldens);
     if (corpus_cmd->parsed()) return runCorpus(corpus);

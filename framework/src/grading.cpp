@@ -29,9 +29,11 @@ struct ReferenceImages {
 
 // Renders the lab folder `id` of the submission `root` (student files must stay inside root).
 IsolatedRender renderFrom(const LabSpec& spec, const std::string& root, Backend backend,
-                          const IsolationLimits& limits) {
+                          const IsolationLimits& limits,
+                          const std::function<void(const std::string&)>& progress = {}) {
     RenderOptions options;
     options.containment_root = root;
+    options.progress = progress;
     return renderLabIsolated(spec, (fs::path(root) / spec.id).string(), backend, limits, options);
 }
 
@@ -231,7 +233,14 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     }
 
     // The student first: a submission that does not build needs no reference at all.
-    const IsolatedRender student = renderFrom(spec, submission_dir, options.backend, options.limits);
+    // What was graded, named in the report: the student files of this lab in this folder.
+    lab.folder = fs::absolute(fs::path(submission_dir) / id).lexically_normal().string();
+    lab.files = spec.student_files;
+    const IsolatedRender student =
+        renderFrom(spec, submission_dir, options.backend, options.limits,
+                   options.progress ? std::function<void(const std::string&)>(
+                                          [&](const std::string& event) { options.progress(id, event); })
+                                    : std::function<void(const std::string&)>());
     if (!student.renderer.empty()) *renderer = student.renderer;
     for (const Diagnostic& d : student.render.diagnostics)
         lab.diagnostics.push_back({d.file, d.line, d.column, d.severity, d.message});

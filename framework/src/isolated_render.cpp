@@ -1,6 +1,7 @@
 // Child-process rendering; see isolated_render.h.
 #include "shaderlab/isolated_render.h"
 
+#include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 namespace fs = std::filesystem;
@@ -61,8 +63,8 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
 
 // Child side: render, then write result.json and one raw file per image. Never returns.
 [[noreturn]] void childMain(const LabSpec& spec, const std::string& shader_dir, Backend backend,
-                            const IsolationLimits& limits, const RenderOptions& options, const fs::path& dir,
-                            pid_t parent_pid) {
+                            const IsolationLimits& limits, RenderOptions options, const fs::path& dir,
+                            pid_t parent_pid, int progress_fd) {
     // Die with the grader: a parent killed by a batch system's time limit must not leave a
     // child spinning on a shader. If it is already gone, stop now.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -89,6 +91,15 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
         result["message"] = ctx.error;
     } else {
         result["renderer"] = ctx.context->info().renderer + ", OpenGL " + ctx.context->info().version;
+        // Progress goes to the parent line by line, so it can say where a render stopped.
+        options.progress = [progress_fd](const std::string& event) {
+            const std::string line = event + "\n";
+            for (std::size_t done = 0; done < line.size();) {
+                const ssize_t n = write(progress_fd, line.data() + done, line.size() - done);
+                if (n <= 0 && errno != EINTR) return;
+                if (n > 0) done += static_cast<std::size_t>(n);
+            }
+        };
         const LabRender r = renderLab(spec, shader_dir, options);
         result["status"] = renderStatusName(r.status);
         result["message"] = r.message;
@@ -129,6 +140,20 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
     // _exit: skip atexit handlers and static destructors of the copied parent state.
     std::fflush(nullptr);
     _exit(0);
+}
+
+// " while <what the child was doing>", from its last progress event.
+std::string whereItStopped(const std::string& event) {
+    std::istringstream in(event);
+    std::string kind, a, b;
+    in >> kind >> a >> b;
+    if (kind == "compile")
+        return " while compiling " + a + " and " + b + " (a very large or complex shader?)";
+    if (kind == "pass")
+        return " while drawing pass '" + b + "' of scene '" + a +
+               "' (an endless or very long loop in a shader?)";
+    if (kind == "scene") return " while setting up scene '" + a + "'";
+    return " (an endless loop in a shader?)";
 }
 
 IsolatedStatus statusFromName(const std::string& s) {
@@ -236,17 +261,46 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
     dfl.sa_handler = SIG_DFL;
     sigemptyset(&dfl.sa_mask);
     sigaction(SIGCHLD, &dfl, &old_chld);
+    int progress_pipe[2] = {-1, -1};
+    if (pipe2(progress_pipe, O_CLOEXEC) != 0) progress_pipe[0] = progress_pipe[1] = -1;
     const pid_t parent_pid = getpid();
     const pid_t pid = fork();
     if (pid < 0) {
+        for (int fd : progress_pipe)
+            if (fd >= 0) close(fd);
         sigaction(SIGCHLD, &old_chld, nullptr);
         out.status = IsolatedStatus::RenderError;
         out.message = std::string("fork failed: ") + std::strerror(errno);
         fs::remove_all(dir);
         return out;
     }
-    if (pid == 0) childMain(spec, shader_dir, backend, limits, options, dir, parent_pid);
+    if (pid == 0) {
+        if (progress_pipe[0] >= 0) close(progress_pipe[0]);
+        childMain(spec, shader_dir, backend, limits, options, dir, parent_pid, progress_pipe[1]);
+    }
     g_render_child = pid;
+    if (progress_pipe[1] >= 0) close(progress_pipe[1]);
+    if (progress_pipe[0] >= 0) fcntl(progress_pipe[0], F_SETFL, O_NONBLOCK);
+    std::string pending;
+    // Reads what the child reported so far: the caller hears every event, and the last one says
+    // where a render that has to be stopped was.
+    auto drainProgress = [&]() {
+        if (progress_pipe[0] < 0) return;
+        char buf[4096];
+        for (;;) {
+            const ssize_t n = read(progress_pipe[0], buf, sizeof buf);
+            if (n <= 0) break;
+            pending.append(buf, static_cast<std::size_t>(n));
+        }
+        for (std::size_t nl = pending.find('\n'); nl != std::string::npos; nl = pending.find('\n')) {
+            std::string event = pending.substr(0, nl);
+            pending.erase(0, nl + 1);
+            if (event.size() > 1000) event.resize(1000);
+            if (event.rfind("done ", 0) != 0) out.last_event = event;
+            if (options.progress) options.progress(event);
+        }
+        if (pending.size() > 1000000) pending.clear();  // a line without end: not ours
+    };
 
     int wstatus = 0;
     bool finished = false, lost = false;
@@ -263,8 +317,11 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
         }
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (elapsed > limits.timeout_s) break;
+        drainProgress();
         std::this_thread::sleep_for(std::chrono::milliseconds(elapsed < 1.0 ? 2 : 20));
     }
+    drainProgress();
+    if (progress_pipe[0] >= 0) close(progress_pipe[0]);
     if (!finished) {
         kill(pid, SIGKILL);
         // Bounded: a child stuck in the kernel (a GPU driver) may take a while to die.
@@ -280,8 +337,8 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
         out.status = IsolatedStatus::Timeout;
         char buf[64];
         std::snprintf(buf, sizeof buf, "%.0f", limits.timeout_s);
-        out.message = "rendering did not finish within " + std::string(buf) +
-                      " s (an endless loop in a shader?); the process was killed";
+        out.message = "rendering did not finish within " + std::string(buf) + " s" +
+                      whereItStopped(out.last_event) + "; the process was killed";
     } else if (!lost && WIFSIGNALED(wstatus)) {
         out.status = IsolatedStatus::Crashed;
         const int sig = WTERMSIG(wstatus);

@@ -104,9 +104,22 @@ FileText readFileInside(const std::string& root, const std::string& relative, st
     return readFile(p.path, max_bytes);
 }
 
-std::string defaultLabsRoot() {
+std::string defaultLabsRoot(const std::string& start) {
     if (const char* env = std::getenv("SHADERLAB_LABS"); env && *env) return env;
-    return SHADERLAB_SOURCE_DIR "/labs";
+    std::error_code ec;
+    fs::path dir = start.empty() ? fs::current_path(ec) : fs::absolute(start, ec);
+    if (ec) return {};
+    // Like git finding its repository: the nearest folder, from here upward, whose labs/ holds
+    // a lab. So a copied course grades its own files, wherever the program was built.
+    for (;;) {
+        const fs::path labs = dir / "labs";
+        if (fs::is_directory(labs, ec)) {
+            for (const auto& entry : fs::directory_iterator(labs, ec))
+                if (fs::is_regular_file(entry.path() / "lab.json", ec)) return labs.string();
+        }
+        if (!dir.has_parent_path() || dir.parent_path() == dir) return {};
+        dir = dir.parent_path();
+    }
 }
 
 }  // namespace shaderlab

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -446,6 +447,9 @@ class LabRunner {
         SceneRender* out;
     };
 
+    void report(const std::string& event) const {
+        if (options_.progress) options_.progress(event);
+    }
     bool fail(RenderStatus status, const std::string& message) {
         if (out_.status == RenderStatus::Ok) {
             out_.status = status;
@@ -555,6 +559,7 @@ bool LabRunner::buildPrograms() {
         const std::string key = programKey(pass);
         if (programs_.count(key)) continue;
         const TargetSpec& target = *spec_.findTarget(pass.target);
+        report("compile " + pass.program.vertex + " " + pass.program.fragment);
         ShaderProgram& prog = programs_[key];
         prog.build(StageSource{pass.program.vertex, sources_[pass.program.vertex], includes},
                    StageSource{pass.program.fragment, sources_[pass.program.fragment], includes},
@@ -826,6 +831,7 @@ void LabRunner::copyFrontToBack(TargetGl& t) {
 
 bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     const auto t0 = std::chrono::steady_clock::now();
+    report("scene " + scene_spec.name);
     const LoadedScene* scene = loadScene(scene_spec);
     if (!scene) return false;
     // Every target starts each scene blank, so nothing of the previous scene survives in a pass
@@ -891,6 +897,9 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     glFinish();
     scene_out.render_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    char ms[32];
+    std::snprintf(ms, sizeof ms, "%.1f", scene_out.render_ms);
+    report("done " + scene_spec.name + " " + ms);
     out_.scenes.push_back(std::move(scene_out));
     return true;
 }
@@ -902,6 +911,7 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
     TargetGl& target = *targets_.at(pass.target);
     const TargetSpec& tspec = *target.spec;
     const PassCamera& pc = ctx.cameras[index];
+    if (iteration == 0) report("pass " + ctx.spec->name + " " + pass.name);
     const int write = target.buffers == 2 ? 1 - target.front : 0;
     const bool clears_all = std::all_of(pass.state.clear_colors.begin(), pass.state.clear_colors.end(),
                                         [](const auto& c) { return c.has_value(); });

@@ -116,6 +116,8 @@ std::string reportToJson(const Report& report) {
                              {"failing", g.failing}});
         labs.push_back({{"id", lab.id},
                         {"title", lab.title},
+                        {"folder", lab.folder},
+                        {"files", lab.files},
                         {"status", lab.status},
                         {"score", number(lab.score)},
                         {"max_score", number(lab.max_score)},
@@ -160,6 +162,8 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
         ReportLab lab;
         lab.id = l.value("id", "");
         lab.title = l.value("title", "");
+        lab.folder = l.value("folder", "");
+        lab.files = l.value("files", std::vector<std::string>{});
         lab.status = l.value("status", "");
         lab.score = fromNumber(l.value("score", json()), 0.0);
         lab.max_score = fromNumber(l.value("max_score", json()), 0.0);

@@ -22,6 +22,9 @@ struct GradeOptions {
     std::vector<std::string> labs;  // empty: every lab under labs_root
     std::string out_dir;            // images go to out_dir/<lab>/<scene>/
     IsolationLimits limits;
+    // Told, as the student's render goes, what it is doing (RenderOptions::progress events,
+    // with the lab id). May be empty.
+    std::function<void(const std::string& lab, const std::string& event)> progress;
 };
 
 // Called after each lab is graded with the report so far (its last lab is the new one), so the

@@ -25,9 +25,11 @@ struct IsolatedRender {
     std::string message;
     LabRender render;      // scenes and diagnostics as the child produced them
     std::string renderer;  // GL_RENDERER and GL_VERSION the child saw
+    std::string last_event;  // the last thing the child reported doing (RenderOptions::progress)
     double wall_ms = 0.0;
 };
 
+// `options.progress`, when set, is called in this process with each event the child reports.
 IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_dir, Backend backend,
                                  const IsolationLimits& limits, const RenderOptions& options = {});
 

@@ -32,8 +32,9 @@ FileText readFileInside(const std::string& root, const std::string& relative,
 // Reads any file by path (trusted inputs: lab files chosen by the instructor).
 FileText readFile(const std::string& path, std::size_t max_bytes = 256u << 20);
 
-// The labs folder the tools use by default: $SHADERLAB_LABS when set, else the source tree's
-// labs/ recorded at configure time.
-std::string defaultLabsRoot();
+// The labs folder the tools use by default: $SHADERLAB_LABS when set, else the labs/ folder of
+// the course found from `start` (default: the current directory) upward: the nearest folder whose
+// labs/ holds a lab (a sub-folder with a lab.json). "" when there is none.
+std::string defaultLabsRoot(const std::string& start = "");
 
 }  // namespace shaderlab

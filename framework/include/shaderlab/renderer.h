@@ -5,6 +5,7 @@
 // the shaders are a submission's.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,6 +56,10 @@ struct RenderOptions {
     // The submission folder: student files must resolve inside it (so a lab folder that is a
     // symlink out of the submission is refused). Empty: the shader folder itself.
     std::string containment_root;
+    // Told what the renderer is about to do, one line each: "compile <vertex> <fragment>",
+    // "scene <scene>", "pass <scene> <pass>" (a repeated pass on its first run only) and
+    // "done <scene> <milliseconds>". May be empty.
+    std::function<void(const std::string&)> progress;
 };
 
 // Renders `spec` with the shader files found in `shader_dir` (the submission's lab folder,

@@ -74,6 +74,8 @@ struct ReportGoal {
 
 struct ReportLab {
     std::string id, title;
+    std::string folder;              // the submission's folder of this lab, absolute
+    std::vector<std::string> files;  // the student files graded there, relative to `folder`
     std::string status;  // one of the closed set above
     double score = 0.0, max_score = 0.0;
     std::string message;
