@@ -5,7 +5,7 @@
 // file.
 //
 // Some scenes push the stored depth back as glPolygonOffset does (OpenGL 4.5 core specification,
-// section 14.6.5, "Depth Offset"): offset = factor * m + units, with m the depth slope of the
+// section 14.6, "Depth Offset"): offset = factor * m + units, with m the depth slope of the
 // triangle, max(|dz/dx|, |dz/dy|) in the map's pixels. With the map itself biased, those scenes
 // show no acne even without your bias, so they grade the projection and the filtering alone;
 // the bias scenes set both numbers to 0, and there your bias alone decides.

@@ -15,9 +15,11 @@ bool outside_shadow_map(vec3 coord) {
     return any(lessThan(coord, vec3(0.0))) || any(greaterThan(coord, vec3(1.0)));
 }
 
-// Slope-scaled depth bias: a surface at a slant to the light changes depth quickly across one
-// texel of the map, so it needs more bias (proportional to tan(theta), theta the angle between
-// normal and light), clamped so grazing angles do not get an enormous one.
+// Slope-scaled depth bias (the slope term of glPolygonOffset; OpenGL 4.5 core specification,
+// section 14.6, "Depth Offset"): a surface at an angle theta to the light changes depth by
+// tan(theta) times a texel's width across one texel of the map, about 0.00067 tan(theta) in depth
+// units here. PCF compares against texels up to 1.5 texels away, so 0.002 tan(theta) (three
+// texels' worth), clamped so that a grazing angle does not get an enormous bias.
 float shadow_bias(vec3 n, vec3 l) {
     float cos_theta = clamp(dot(n, l), 0.05, 1.0);
     float tan_theta = sqrt(1.0 - cos_theta * cos_theta) / cos_theta;
