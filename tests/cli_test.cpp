@@ -67,7 +67,8 @@ TEST(CliExitCodes, CheckPassesTheReferenceAndFailsTheStarter) {
 // `start`, and names the folder and files it graded.
 TEST(CliCheck, GradesTheCopiedCourseItRunsIn) {
     const fs::path course = scratch("course_copy");
-    for (const char* folder : {"labs/01-phong", "labs/scenes", "labs/shared", "reference_solutions/01-phong"}) {
+    for (const char* folder :
+         {"labs/01-phong", "labs/scenes", "labs/shared", "reference_solutions/01-phong"}) {
         fs::create_directories((course / folder).parent_path());
         fs::copy(fs::path(SHADERLAB_SOURCE_DIR) / folder, course / folder, fs::copy_options::recursive);
     }

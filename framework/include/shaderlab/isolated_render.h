@@ -23,8 +23,8 @@ struct IsolationLimits {
 struct IsolatedRender {
     IsolatedStatus status = IsolatedStatus::Ok;
     std::string message;
-    LabRender render;      // scenes and diagnostics as the child produced them
-    std::string renderer;  // GL_RENDERER and GL_VERSION the child saw
+    LabRender render;        // scenes and diagnostics as the child produced them
+    std::string renderer;    // GL_RENDERER and GL_VERSION the child saw
     std::string last_event;  // the last thing the child reported doing (RenderOptions::progress)
     double wall_ms = 0.0;
 };

@@ -76,7 +76,7 @@ struct ReportLab {
     std::string id, title;
     std::string folder;              // the submission's folder of this lab, absolute
     std::vector<std::string> files;  // the student files graded there, relative to `folder`
-    std::string status;  // one of the closed set above
+    std::string status;              // one of the closed set above
     double score = 0.0, max_score = 0.0;
     std::string message;
     std::string reference_source;  // "reference_solutions" or "goldens"
