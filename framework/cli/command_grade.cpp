@@ -86,6 +86,16 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
                     100.0 * s.metrics.mismatch_fraction);
         if (!pass && !s.message.empty()) std::printf("       %s\n", s.message.c_str());
     }
+    // What the points are for: each learning goal, met or not, and where it was not.
+    for (const grader::ReportGoal& g : lab.goals) {
+        std::printf("  %s%-4s%s goal %-62s %5.2f / %.2f\n", g.met ? c.green : c.red, g.met ? "met" : "MISS",
+                    c.reset, g.title.c_str(), g.met ? g.points : 0.0, g.points);
+        if (!g.met) {
+            std::string where;
+            for (const std::string& f : g.failing) where += (where.empty() ? "" : ", ") + f;
+            std::printf("       not met in %s\n", where.c_str());
+        }
+    }
 }
 
 }  // namespace
