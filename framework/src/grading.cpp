@@ -233,8 +233,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     // The student first: a submission that does not build needs no reference at all.
     const IsolatedRender student = renderFrom(spec, submission_dir, options.backend, options.limits);
     if (!student.renderer.empty()) *renderer = student.renderer;
-    for (const Diagnostic& d : student.render.diagnostics)
-        lab.diagnostics.push_back({d.file, d.line, d.column, d.severity, d.message});
+    for (const Diagnostic& d : student.render.diagnostics) lab.diagnostics.push_back(toReportDiagnostic(d));
     if (student.status != IsolatedStatus::Ok) {
         lab.status = labStatusOf(student.status);
         lab.message = student.message;
@@ -410,6 +409,11 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
 }
 
 }  // namespace
+
+grader::ReportDiagnostic toReportDiagnostic(const Diagnostic& d) {
+    return {d.file,        d.line,        d.column,         d.severity, d.message,
+            d.explanation, d.source_line, d.driver_message, d.follow_on};
+}
 
 std::string goldenPath(const std::string& lab_dir, const std::string& scene, const std::string& image,
                        bool final_image, bool coverage, bool hdr) {
