@@ -512,6 +512,8 @@ std::string tokenWords(const std::string& token) {
     if (token.size() >= 3 && token.front() == '\'' && token.back() == '\'')
         return "`" + token.substr(1, token.size() - 2) + "`";
     if (token == "end of file" || token == "$end") return "the end of the file";
+    if (token == "NEWLINE") return "the end of the line";  // the preprocessor's
+    if (token == "HASH_TOKEN") return "`#`";
     static const std::map<std::string, std::string> ops = {
         {"INC_OP", "++"},       {"DEC_OP", "--"},        {"LE_OP", "<="},      {"GE_OP", ">="},
         {"EQ_OP", "=="},        {"NE_OP", "!="},         {"AND_OP", "&&"},     {"OR_OP", "||"},
@@ -527,7 +529,10 @@ std::string tokenWords(const std::string& token) {
     if (token == "BOOLCONSTANT") return "`true` or `false`";
     if (token.find("CONSTANT") != std::string::npos) return "a number";
     std::string word = token;
-    if (word.size() > 4 && word.compare(word.size() - 4, 4, "_TOK") == 0) word.resize(word.size() - 4);
+    for (const char* suffix : {"_TOKEN", "_TOK"}) {
+        const std::size_t n = std::strlen(suffix);
+        if (word.size() > n && word.compare(word.size() - n, n, suffix) == 0) word.resize(word.size() - n);
+    }
     for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return "`" + word + "`";
 }
@@ -535,7 +540,7 @@ std::string tokenWords(const std::string& token) {
 // Replaces parser token names that slipped into a message (the safety net behind every rewrite).
 std::string scrubJargon(const std::string& s) {
     static const std::regex jargon(
-        R"(\b(?:[A-Z][A-Z0-9]*_TOK|(?:NEW_|TYPE_)?IDENTIFIER|[A-Z0-9]*CONSTANT|FIELD_SELECTION|[A-Z]+_(?:OP|ASSIGN))\b)");
+        R"(\b(?:[A-Z][A-Z0-9]*_TOK(?:EN)?|(?:NEW_|TYPE_|FUNC_|OBJ_)?IDENTIFIER|[A-Z0-9]*CONSTANT|FIELD_SELECTION|[A-Z]+_(?:OP|ASSIGN))\b)");
     std::string out;
     auto begin = std::sregex_iterator(s.begin(), s.end(), jargon);
     std::size_t last = 0;
@@ -1009,6 +1014,12 @@ void explainOne(Diagnostic& d, const Ctx& c) {
         d.explanation =
             "Its value is undefined: this machine happens to give 0, a GPU may give anything. Give it "
             "a value where it is declared, or on every path before it is read.";
+        return;
+    }
+    if (msg == "Unterminated #if") {
+        d.column = 0;
+        d.message = "this `#if` has no `#endif`";
+        d.explanation = "Every `#if`, `#ifdef` and `#ifndef` needs an `#endif` below it.";
         return;
     }
     if (msg == "vector size mismatch for arithmetic operator") {
