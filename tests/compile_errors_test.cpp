@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <regex>
 #include <sstream>
 
@@ -99,6 +100,41 @@ INSTANTIATE_TEST_SUITE_P(Cases, CompileErrorCorpus, ::testing::ValuesIn(caseName
                              std::replace(name.begin(), name.end(), '-', '_');
                              return name;
                          });
+
+// Whatever the student types: a few hundred random edits of the reference never crash the
+// explainer, never leak parser jargon and never put a caret off its line.
+TEST(CompileErrorMutations, NeverLeakJargonOrStrayCarets) {
+    std::string err;
+    ASSERT_NE(shaderlab::testing::sharedContext(shaderlab::Backend::OSMesa, &err), nullptr) << err;
+    const std::string vertex = readText(kReference / "phong.vert"),
+                      fragment = readText(kReference / "phong.frag");
+    ASSERT_FALSE(fragment.empty());
+    const char* const junk[] = {
+        ";",  "{",  "}",  "(",     ")",          "vec3",    "float", "x", ".", "=",    "#", "/*", "*/",
+        "//", "\n", "\t", "1 / 2", "texture2D(", "varying", "error", "'", "`", "\xff", "[", "]"};
+    std::mt19937 rng(1234);  // fixed: the same edits every run
+    static const std::regex jargon(R"(_TOK\b|IDENTIFIER|CONSTANT\b|syntax error, unexpected|\$end)");
+    for (int i = 0; i < 300; ++i) {
+        std::string text = fragment;
+        for (unsigned e = 0, edits = 1 + rng() % 4; e < edits; ++e) {
+            const std::size_t at = rng() % text.size();
+            if (rng() % 2)
+                text.erase(at, 1 + rng() % 6);
+            else
+                text.insert(at, junk[rng() % (sizeof junk / sizeof *junk)]);
+        }
+        shaderlab::ShaderProgram p;
+        p.build("phong.vert", vertex, "phong.frag", text);
+        for (const Diagnostic& d : p.diagnostics()) {
+            EXPECT_FALSE(d.message.empty()) << text;
+            EXPECT_FALSE(std::regex_search(d.message, jargon)) << d.message;
+            EXPECT_FALSE(std::regex_search(d.explanation, jargon)) << d.explanation;
+            if (d.column > 0) {
+                EXPECT_LE(static_cast<std::size_t>(d.column), d.source_line.size() + 1) << text;
+            }
+        }
+    }
+}
 
 TEST(CompileErrorCorpusSize, HoldsAtLeastTenCases) { EXPECT_GE(caseNames().size(), 10u); }
 

@@ -551,6 +551,12 @@ std::string scrubJargon(const std::string& s) {
     return out + s.substr(last);
 }
 
+// "did you mean" only for names long enough that a near miss means something (for `v`, every
+// one-letter name is one edit away).
+std::string suggestion(const std::string& word, const std::vector<std::string>& candidates) {
+    return word.size() < 3 ? std::string() : closestMatch(word, candidates);
+}
+
 std::string indentOf(const std::string& line) {
     std::size_t n = 0;
     while (n < line.size() && isBlank(line[n])) ++n;
@@ -681,7 +687,7 @@ void explainSyntax(Diagnostic& d, const Ctx& c, std::size_t f, const std::string
             std::vector<std::string> types(builtinTypes().begin(), builtinTypes().end());
             for (const Decl& s : c.m.decls)
                 if (s.storage == "struct") types.push_back(s.name);
-            const std::string guess = closestMatch(prev.text, types);
+            const std::string guess = suggestion(prev.text, types);
             d.column = prev.column;
             d.message = quote(prev.text) + " is not a type" +
                         (guess.empty() ? "" : "; did you mean " + quote(guess) + "?");
@@ -765,7 +771,7 @@ void explainUndeclared(Diagnostic& d, const Ctx& c, std::size_t f, const std::st
     }
     std::vector<std::string> names = variableNames(c.m);
     names.erase(std::remove(names.begin(), names.end(), name), names.end());
-    const std::string guess = closestMatch(name, names);
+    const std::string guess = suggestion(name, names);
     d.message =
         quote(name) + " is not declared" + (guess.empty() ? "" : "; did you mean " + quote(guess) + "?");
     d.explanation =
@@ -786,7 +792,7 @@ void explainNoFunction(Diagnostic& d, const Ctx& c, std::size_t f, const std::st
     std::vector<std::string> names = builtinFunctions();
     for (const Decl& decl : c.m.decls)
         if (decl.storage == "function") names.push_back(decl.name);
-    const std::string guess = closestMatch(name, names);
+    const std::string guess = suggestion(name, names);
     d.message =
         "there is no function " + quote(name) + (guess.empty() ? "" : "; did you mean " + quote(guess) + "?");
     d.explanation =
