@@ -143,6 +143,27 @@ TEST_F(ShaderProgramTest, LinkWarningsAreNotRepeatedOrGarbled) {
     EXPECT_EQ(d.driver_message, "warning: fragment shader varying v_missing not written by vertex shader");
 }
 
+// Inputs declared and never used are often a step forgotten; a use inside a macro counts.
+TEST_F(ShaderProgramTest, WarnsAboutAFragmentInputNeverUsed) {
+    const std::string frag =
+        "#version 330 core\n"
+        "in vec3 v_a;\n"
+        "in vec3 v_b;\n"
+        "#define B normalize(v_b)\n"
+        "out vec4 o_color;\n"
+        "void main() { o_color = vec4(B, 1.0); }\n";
+    shaderlab::ShaderProgram p;
+    ASSERT_TRUE(p.build("tri.vert", kVertex, "tri.frag", frag)) << p.linkLog();
+    int unused = 0;
+    for (const shaderlab::Diagnostic& d : p.diagnostics()) {
+        if (d.message.find("never used") == std::string::npos) continue;
+        ++unused;
+        EXPECT_EQ(d.line, 2);
+        EXPECT_NE(d.message.find("v_a"), std::string::npos) << d.message;
+    }
+    EXPECT_EQ(unused, 1);
+}
+
 TEST_F(ShaderProgramTest, ReflectsUniformsAndOutputs) {
     const std::string frag =
         "#version 330 core\n"

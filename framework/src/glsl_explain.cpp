@@ -425,6 +425,21 @@ StageModel buildModel(const StageText& t) {
         }
     }
     collectDeclarations(m);
+    // Names in preprocessor lines are uses too (`#define N normalize(v_normal)`).
+    for (const std::vector<std::string>& lines : m.lines)
+        for (const std::string& line : lines) {
+            const std::size_t hash = line.find_first_not_of(" \t");
+            if (hash == std::string::npos || line[hash] != '#') continue;
+            for (std::size_t p = hash + 1; p < line.size();) {
+                if (!isNameStart(line[p])) {
+                    ++p;
+                    continue;
+                }
+                const std::size_t start = p;
+                while (p < line.size() && isNameChar(line[p])) ++p;
+                ++m.uses[line.substr(start, p - start)];
+            }
+        }
     return m;
 }
 
