@@ -666,6 +666,27 @@ TEST_F(LabFeatures, IncludedFilesKeepTheirOwnLineNumbers) {
     EXPECT_FLOAT_EQ(image(ok, "m").at(0, 0, 0), 0.125f);
 }
 
+// A file in two programs (here with two vertex stages) is compiled twice; its error is reported
+// once, on the line that lacks the ';'.
+TEST_F(LabFeatures, FileInTwoProgramsReportsItsErrorOnce) {
+    write("other.vert", kFullscreenVert);
+    write("bad.frag",
+          "#version 330 core\nin vec2 v_uv;\nout vec4 o_color\nvoid main() { o_color = vec4(v_uv, 0.0, 1.0); "
+          "}\n");
+    const auto r = render(fullscreenLab(
+        R"({"name": "a", "program": {"vertex": "fullscreen.vert", "fragment": "bad.frag"}, "draw": "fullscreen"},
+        {"name": "b", "program": {"vertex": "other.vert", "fragment": "bad.frag"}, "draw": "fullscreen"})"));
+    EXPECT_EQ(r.status, RenderStatus::CompileError);
+    int errors = 0;
+    for (const shaderlab::Diagnostic& d : r.diagnostics) {
+        if (d.severity != "error") continue;
+        ++errors;
+        EXPECT_EQ(d.file, "bad.frag");
+        EXPECT_EQ(d.line, 3);
+    }
+    EXPECT_EQ(errors, 1) << diagnostics(r);
+}
+
 // Regression: outputs that no attachment receives were lost without a word.
 TEST_F(LabFeatures, OutputThatReachesNoAttachmentIsDiagnosed) {
     write("two.frag",

@@ -70,7 +70,9 @@ grader::Report sampleReport() {
     broken.status = "compile_error";
     broken.max_score = 10.0;
     broken.message = "toon.frag:7: syntax error";
-    broken.diagnostics.push_back({"toon.frag", 7, 0, "error", "syntax error"});
+    broken.diagnostics.push_back({"toon.frag", 7, 13, "error", "missing `;` at the end of this line",
+                                  "Every statement ends with `;`.", "\tfloat d = a < b",
+                                  "0:8(2): syntax error", 2});
     r.labs = {built, broken};
     return r;
 }
@@ -88,6 +90,12 @@ TEST(ReportJson, RoundTripsEveryField) {
     EXPECT_EQ(out.labs[1].status, "compile_error");
     EXPECT_EQ(out.labs[1].diagnostics[0].line, 7);
     EXPECT_EQ(out.labs[0].diagnostics[0].message, in.labs[0].diagnostics[0].message);
+    const grader::ReportDiagnostic& d = out.labs[1].diagnostics[0];
+    EXPECT_EQ(d.column, 13);
+    EXPECT_EQ(d.explanation, "Every statement ends with `;`.");
+    EXPECT_EQ(d.source_line, "\tfloat d = a < b");
+    EXPECT_EQ(d.driver_message, "0:8(2): syntax error");
+    EXPECT_EQ(d.follow_on, 2);
     ASSERT_EQ(out.labs[0].scenes.size(), 2u);
     EXPECT_TRUE(std::isinf(out.labs[0].scenes[0].metrics.psnr_db));
     EXPECT_DOUBLE_EQ(out.labs[0].scenes[1].metrics.psnr_db, 20.0);
@@ -112,6 +120,42 @@ TEST(ReportJson, InfinityIsNullWithIdenticalFlag) {
     EXPECT_EQ(j["schema_version"], grader::kReportSchemaVersion);
 }
 
+// The explanation fields are optional within schema 2: absent when empty, defaults when read.
+TEST(ReportJson, DiagnosticExtrasAreOptional) {
+    const auto j = nlohmann::json::parse(grader::reportToJson(sampleReport()));
+    const auto& plain = j["labs"][0]["diagnostics"][0];
+    EXPECT_FALSE(plain.contains("explanation"));
+    EXPECT_FALSE(plain.contains("follow_on"));
+    EXPECT_TRUE(j["labs"][1]["diagnostics"][0].contains("source_line"));
+    grader::Report out;
+    std::string error;
+    ASSERT_TRUE(grader::reportFromJson(R"({"schema_version": 2, "labs": [{"id": "01-phong", "diagnostics": [
+        {"file": "phong.frag", "line": 26, "column": 2, "severity": "error", "message": "old"}]}]})",
+                                       &out, &error))
+        << error;
+    const grader::ReportDiagnostic& d = out.labs.at(0).diagnostics.at(0);
+    EXPECT_EQ(d.line, 26);
+    EXPECT_TRUE(d.explanation.empty() && d.source_line.empty() && d.driver_message.empty());
+    EXPECT_EQ(d.follow_on, 0);
+}
+
+// The source line, a caret under the column (tabs kept so it lines up), the explanation and the
+// count of dropped follow-on errors; the column itself is not repeated in the header.
+TEST(FormatDiagnostic, ShowsLineCaretAndExplanation) {
+    const grader::ReportDiagnostic d = sampleReport().labs[1].diagnostics[0];
+    EXPECT_EQ(grader::formatDiagnostic(d, "02-toon/", "  "),
+              "  02-toon/toon.frag:7: error: missing `;` at the end of this line\n"
+              "   7 | \tfloat d = a < b\n"
+              "     | \t           ^\n"
+              "     = Every statement ends with `;`. (2 more errors after this one, probably caused by it)");
+    grader::ReportDiagnostic bare{"lab.json", 0, 0, "warning", "no output writes attachment 'color'"};
+    EXPECT_EQ(grader::formatDiagnostic(bare), "lab.json: warning: no output writes attachment 'color'");
+    grader::ReportDiagnostic no_caret = d;
+    no_caret.column = 0;
+    no_caret.follow_on = 0;
+    EXPECT_EQ(grader::formatDiagnostic(no_caret).find('^'), std::string::npos);
+}
+
 TEST(ReportJson, RejectsOtherSchemaVersions) {
     grader::Report out;
     std::string error;
@@ -134,6 +178,8 @@ TEST(ReportGradescope, OneTestPerGoalAndOnePerBrokenLab) {
     EXPECT_NE(j["tests"][1]["output"].get<std::string>().find("torus/shade: PSNR 20.0"), std::string::npos);
     EXPECT_EQ(j["tests"][2]["name"], "02-toon");
     EXPECT_NE(j["tests"][2]["output"].get<std::string>().find("toon.frag:7"), std::string::npos);
+    EXPECT_NE(j["tests"][2]["output"].get<std::string>().find("Every statement ends with"),
+              std::string::npos);
     for (const auto& t : j["tests"]) EXPECT_EQ(t["visibility"], "visible");
 }
 
@@ -151,6 +197,9 @@ TEST(ReportHtml, EscapesStudentTextAndLinksImages) {
     EXPECT_NE(h.find("src=\"01-phong/sphere/student.png\""), std::string::npos);
     EXPECT_NE(h.find("&infin;"), std::string::npos);
     EXPECT_NE(h.find("first failing pass"), std::string::npos);
+    // The student's own line is escaped too, with the caret under it.
+    EXPECT_NE(h.find("7 | \tfloat d = a &lt; b\n"), std::string::npos);
+    EXPECT_NE(h.find("= Every statement ends with `;`."), std::string::npos);
 }
 
 }  // namespace

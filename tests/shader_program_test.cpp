@@ -112,6 +112,56 @@ TEST_F(ShaderProgramTest, LinkErrorIsReportedAsLinkError) {
     EXPECT_TRUE(p.compiled());
     EXPECT_FALSE(p.linked());
     EXPECT_FALSE(p.linkLog().empty());
+    // One diagnostic, at the fragment stage's declaration, naming both files and both types.
+    ASSERT_EQ(p.diagnostics().size(), 1u) << p.linkLog();
+    const shaderlab::Diagnostic& d = p.diagnostics()[0];
+    EXPECT_EQ(d.file, "tri.frag");
+    EXPECT_EQ(d.line, 2);
+    EXPECT_EQ(d.column, 9);
+    EXPECT_EQ(d.source_line, "in vec4 v_value;");
+    EXPECT_EQ(d.message, "`v_value` is a vec3 in tri.vert but a vec4 in tri.frag");
+    EXPECT_FALSE(d.driver_message.empty());
+}
+
+// Mesa prints a link warning once per link step, each followed by a line holding ".": one
+// diagnostic remains, placed at the input that nothing writes.
+TEST_F(ShaderProgramTest, LinkWarningsAreNotRepeatedOrGarbled) {
+    const std::string frag =
+        "#version 330 core\n"
+        "in vec3 v_missing;\n"
+        "out vec4 o_color;\n"
+        "void main() { o_color = vec4(v_missing, 1.0); }\n";
+    shaderlab::ShaderProgram p;
+    ASSERT_TRUE(p.build("tri.vert", kVertex, "tri.frag", frag)) << p.linkLog();
+    ASSERT_EQ(p.diagnostics().size(), 1u) << p.linkLog();
+    const shaderlab::Diagnostic& d = p.diagnostics()[0];
+    EXPECT_EQ(d.severity, "warning");
+    EXPECT_EQ(d.file, "tri.frag");
+    EXPECT_EQ(d.line, 2);
+    EXPECT_NE(d.message.find("tri.vert has no output of that name"), std::string::npos) << d.message;
+    EXPECT_EQ(d.message.find('\n'), std::string::npos) << d.message;
+    EXPECT_EQ(d.driver_message, "warning: fragment shader varying v_missing not written by vertex shader");
+}
+
+// Inputs declared and never used are often a step forgotten; a use inside a macro counts.
+TEST_F(ShaderProgramTest, WarnsAboutAFragmentInputNeverUsed) {
+    const std::string frag =
+        "#version 330 core\n"
+        "in vec3 v_a;\n"
+        "in vec3 v_b;\n"
+        "#define B normalize(v_b)\n"
+        "out vec4 o_color;\n"
+        "void main() { o_color = vec4(B, 1.0); }\n";
+    shaderlab::ShaderProgram p;
+    ASSERT_TRUE(p.build("tri.vert", kVertex, "tri.frag", frag)) << p.linkLog();
+    int unused = 0;
+    for (const shaderlab::Diagnostic& d : p.diagnostics()) {
+        if (d.message.find("never used") == std::string::npos) continue;
+        ++unused;
+        EXPECT_EQ(d.line, 2);
+        EXPECT_NE(d.message.find("v_a"), std::string::npos) << d.message;
+    }
+    EXPECT_EQ(unused, 1);
 }
 
 TEST_F(ShaderProgramTest, ReflectsUniformsAndOutputs) {
@@ -157,10 +207,45 @@ TEST_P(LineMappingTest, ErrorOnLineSixIsReportedOnLineSix) {
     EXPECT_EQ(p.diagnostics().front().line, 6) << p.stages().back().info_log;
 }
 
+// Mesa notices a missing ';' at the next token; the diagnostic points at the line lacking it,
+// whatever the version's #line rule.
+TEST_P(LineMappingTest, MissingSemicolonOnLineFiveIsReportedOnLineFive) {
+    std::string err;
+    ASSERT_NE(shaderlab::testing::sharedContext(shaderlab::Backend::OSMesa, &err), nullptr) << err;
+    const std::string frag = std::string(GetParam()) +              // line 1
+                             "out vec4 o_color;\n"                  // 2
+                             "uniform float u_gain;\n"              // 3
+                             "void main() {\n"                      // 4
+                             "    float x = u_gain\n"               // 5: no ';'
+                             "    o_color = vec4(x, x, x, 1.0);\n"  // 6: where Mesa notices
+                             "}\n";
+    shaderlab::ShaderProgram p;
+    EXPECT_FALSE(p.build("tri.vert", kVertex, "tri.frag", frag));
+    ASSERT_FALSE(p.diagnostics().empty());
+    const shaderlab::Diagnostic& d = p.diagnostics().front();
+    EXPECT_EQ(d.line, 5) << p.stages().back().info_log;
+    EXPECT_EQ(d.column, 21);  // just after `u_gain`
+    EXPECT_EQ(d.source_line, "    float x = u_gain");
+    EXPECT_EQ(d.message, "missing `;` at the end of this line");
+}
+
 INSTANTIATE_TEST_SUITE_P(Versions, LineMappingTest,
                          ::testing::Values("#version 330 core\n", "#version 450 core\n", "#version 150\n",
                                            "#version 140\n", "\xEF\xBB\xBF#version 330 core\n",
                                            "// no version directive\n"));
+
+// Mesa lists a call's candidates as indented messages at the call's position: they belong to it.
+TEST(ParseInfoLog, FoldsMesaCandidateLines) {
+    const auto d = shaderlab::parseInfoLog(
+        "0:6(12): error: no matching function for call to `dot(vec3)'; candidates are:\n"
+        "0:6(12): error:    float dot(float, float)\n"
+        "0:6(12): error:    float dot(vec3, vec3)\n"
+        "0:7(3): error: `x' undeclared\n",
+        "a.frag");
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_NE(d[0].message.find("\nfloat dot(vec3, vec3)"), std::string::npos) << d[0].message;
+    EXPECT_EQ(d[1].line, 7);
+}
 
 TEST(ParseInfoLog, MesaPreprocessorErrorsKeepTheirLine) {
     const auto d = shaderlab::parseInfoLog("0:4(1): preprocessor error: #error boom\n", "a.frag");

@@ -71,12 +71,8 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
     std::printf("\n");
     // A build failure's message repeats its first diagnostic, printed below.
     if (!lab.message.empty() && lab.diagnostics.empty()) std::printf("    %s\n", lab.message.c_str());
-    for (const grader::ReportDiagnostic& d : lab.diagnostics) {
-        std::printf("    %s/%s", lab.id.c_str(), d.file.c_str());
-        if (d.line > 0) std::printf(":%d", d.line);
-        if (d.column > 0) std::printf(":%d", d.column);
-        std::printf(": %s: %s\n", d.severity.c_str(), d.message.c_str());
-    }
+    for (const grader::ReportDiagnostic& d : lab.diagnostics)
+        std::printf("%s\n", grader::formatDiagnostic(d, lab.id + "/", "    ").c_str());
     if (!verbose) return;
     for (const grader::ReportScene& s : lab.scenes) {
         const bool pass = s.status == "passed";

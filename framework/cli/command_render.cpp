@@ -3,7 +3,9 @@
 #include <iostream>
 
 #include "commands.h"
+#include "grader/report.h"
 #include "shaderlab/gl_context.h"
+#include "shaderlab/grading.h"
 #include "shaderlab/lab_catalog.h"
 #include "shaderlab/lab_spec.h"
 #include "shaderlab/paths.h"
@@ -16,12 +18,8 @@ namespace shaderlab::cli {
 namespace {
 
 void printDiagnostics(const LabRender& r, const std::string& lab_id) {
-    for (const Diagnostic& d : r.diagnostics) {
-        std::cerr << lab_id << "/" << d.file;
-        if (d.line > 0) std::cerr << ":" << d.line;
-        if (d.column > 0) std::cerr << ":" << d.column;
-        std::cerr << ": " << d.severity << ": " << d.message << "\n";
-    }
+    for (const Diagnostic& d : r.diagnostics)
+        std::cerr << grader::formatDiagnostic(toReportDiagnostic(d), lab_id + "/") << "\n";
 }
 
 }  // namespace

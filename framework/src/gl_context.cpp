@@ -12,6 +12,7 @@
 // clang-format on
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -207,6 +208,10 @@ bool loadGl(GetProcFn get_proc, GlInfo* info, std::string* error) {
 }
 
 ContextResult createHeadlessContext(Backend backend) {
+    // A cached shader compiles silently: "`v' used uninitialized" or a varying never written
+    // would show once and never again. Feedback must not depend on what ran before; the cost
+    // is recompiling (about 0.2 s per lab on llvmpipe). Read when the driver loads.
+    setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
     ContextResult result;
     if (backend == Backend::OSMesa) {
         auto ctx = std::make_unique<OSMesaContextImpl>();

@@ -242,8 +242,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                                           [&](const std::string& event) { options.progress(id, event); })
                                     : std::function<void(const std::string&)>());
     if (!student.renderer.empty()) *renderer = student.renderer;
-    for (const Diagnostic& d : student.render.diagnostics)
-        lab.diagnostics.push_back({d.file, d.line, d.column, d.severity, d.message});
+    for (const Diagnostic& d : student.render.diagnostics) lab.diagnostics.push_back(toReportDiagnostic(d));
     if (student.status != IsolatedStatus::Ok) {
         lab.status = labStatusOf(student.status);
         lab.message = student.message;
@@ -419,6 +418,11 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
 }
 
 }  // namespace
+
+grader::ReportDiagnostic toReportDiagnostic(const Diagnostic& d) {
+    return {d.file,        d.line,        d.column,         d.severity, d.message,
+            d.explanation, d.source_line, d.driver_message, d.follow_on};
+}
 
 std::string goldenPath(const std::string& lab_dir, const std::string& scene, const std::string& image,
                        bool final_image, bool coverage, bool hdr) {

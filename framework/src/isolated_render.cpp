@@ -109,7 +109,11 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
                              {"line", d.line},
                              {"column", d.column},
                              {"severity", d.severity},
-                             {"message", d.message}});
+                             {"message", d.message},
+                             {"explanation", d.explanation},
+                             {"source_line", d.source_line},
+                             {"driver_message", d.driver_message},
+                             {"follow_on", d.follow_on}});
         result["diagnostics"] = diags;
         json scenes = json::array();
         int n = 0;
@@ -192,7 +196,9 @@ bool readChildResult(const fs::path& dir, IsolatedRender* out) {
     out->render.message = out->message;
     for (const json& d : result.value("diagnostics", json::array())) {
         out->render.diagnostics.push_back({d.value("file", ""), d.value("line", 0), d.value("column", 0),
-                                           d.value("severity", ""), d.value("message", "")});
+                                           d.value("severity", ""), d.value("message", ""),
+                                           d.value("explanation", ""), d.value("source_line", ""),
+                                           d.value("driver_message", ""), d.value("follow_on", 0)});
     }
     for (const json& s : result.value("scenes", json::array())) {
         SceneRender scene;

@@ -564,7 +564,16 @@ bool LabRunner::buildPrograms() {
         prog.build(StageSource{pass.program.vertex, sources_[pass.program.vertex], includes},
                    StageSource{pass.program.fragment, sources_[pass.program.fragment], includes},
                    target.attachments);
-        for (const Diagnostic& d : prog.diagnostics()) out_.diagnostics.push_back(d);
+        // A file in two programs (03-cel-outline's outline.frag, with two vertex stages) would
+        // report each of its problems twice.
+        for (const Diagnostic& d : prog.diagnostics()) {
+            const bool repeated =
+                std::any_of(out_.diagnostics.begin(), out_.diagnostics.end(), [&](const Diagnostic& e) {
+                    return e.file == d.file && e.line == d.line && e.column == d.column &&
+                           e.severity == d.severity && e.message == d.message;
+                });
+            if (!repeated) out_.diagnostics.push_back(d);
+        }
         if (!prog.compiled()) {
             out_.status = RenderStatus::CompileError;
         } else if (!prog.linked() && out_.status == RenderStatus::Ok) {

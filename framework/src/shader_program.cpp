@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "gl_types.h"
+#include "glsl_explain.h"
 #include "shaderlab/gl.h"
 
 namespace shaderlab {
@@ -140,6 +141,7 @@ struct Expander {
             if (!seen.insert(t.path).second) continue;  // each file once, like an include guard
             const std::size_t index = out.files.size();
             out.files.push_back(name);
+            out.texts.push_back(t.text);
             text += lineDirective(1, index);
             append(splitLines(t.text), 0, 1, index, depth + 1, text);
             text += lineDirective(number + 1, file);
@@ -162,6 +164,7 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
     const int version_line = findVersionLine(lines);
     PreparedSource out;
     out.files.push_back(file);
+    out.texts.push_back(bom ? student_text.substr(3) : student_text);
     std::string text;
     int next_student_line = 1;
     // GLSL 3.30 (ES 3.00) and later: "#line N" numbers the next line N. Earlier versions number
@@ -195,7 +198,7 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<s
     // NVIDIA:    0(12) : error C1008: undefined variable "x"
     // Others:    ERROR: 0:12: 'x' : undeclared identifier
     static const std::regex mesa(
-        R"(^\s*(\d{1,9}):(\d{1,12})\((\d{1,12})\):\s*(?:preprocessor\s+)?(error|warning)\s*:?\s*(.*)$)",
+        R"(^\s*(\d{1,9}):(\d{1,12})\((\d{1,12})\):\s*(?:preprocessor\s+)?(error|warning)\s*:?( *)(.*)$)",
         std::regex::icase);
     static const std::regex nvidia(R"(^\s*(\d{1,9})\((\d{1,12})\)\s*:\s*(error|warning)\s*\w*\s*:?\s*(.*)$)",
                                    std::regex::icase);
@@ -224,7 +227,14 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<s
             d.line = clampedInt(m[2]);
             d.column = clampedInt(m[3]);
             d.severity = lower(m[4]);
-            d.message = m[5];
+            d.message = m[6];
+            // Mesa lists a call's candidate signatures as indented messages at the call's position.
+            const Diagnostic* prev = out.empty() ? nullptr : &out.back();
+            if (m[5].length() >= 2 && prev && prev->file == d.file && prev->line == d.line &&
+                prev->column == d.column && prev->severity == d.severity) {
+                out.back().message += "\n" + d.message;
+                continue;
+            }
         } else if (std::regex_match(line, m, nvidia)) {
             d.file = fileOf(m[1]);
             d.line = clampedInt(m[2]);
@@ -300,12 +310,17 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
     link_log_.clear();
     compiled_ = linked_ = outputs_known_ = false;
 
-    auto compile = [this](GLenum kind, const StageSource& source) -> GLuint {
+    // Each stage's log is explained once both are compiled: a hint may name the other stage.
+    StageText texts[2];
+    std::vector<Diagnostic> parsed[2], include_errors[2];
+    auto compile = [&](GLenum kind, const StageSource& source) -> GLuint {
+        const int k = kind == GL_VERTEX_SHADER ? 0 : 1;
         StageLog log;
         log.file = source.file;
         log.stage = kind == GL_VERTEX_SHADER ? "vertex" : "fragment";
         const PreparedSource src = prepareSource(source.text, defaultPrelude(), source.file, source.includes);
-        prepared_[kind == GL_VERTEX_SHADER ? 0 : 1] = src.text;
+        prepared_[k] = src.text;
+        texts[k] = StageText{log.stage, src.files, src.texts};
         const auto t0 = std::chrono::steady_clock::now();
         const GLuint shader = glCreateShader(kind);
         const char* ptr = src.text.c_str();
@@ -324,9 +339,9 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
             buf.resize(std::strlen(buf.c_str()));
             log.info_log = buf;
         }
-        for (const Diagnostic& d : src.errors) diagnostics_.push_back(d);
+        include_errors[k] = src.errors;
         log.compiled = ok == GL_TRUE && src.errors.empty();
-        for (auto& d : parseInfoLog(log.info_log, src.files)) diagnostics_.push_back(std::move(d));
+        parsed[k] = parseInfoLog(log.info_log, src.files);
         const bool compiled = log.compiled;
         stages_.push_back(std::move(log));
         if (!compiled) {
@@ -338,6 +353,14 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
 
     const GLuint vs = compile(GL_VERTEX_SHADER, vertex);
     const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment);
+    for (int k = 0; k < 2; ++k) {
+        for (const Diagnostic& d : include_errors[k]) diagnostics_.push_back(d);
+        for (Diagnostic& d : explainCompileLog(parsed[k], texts[k], &texts[1 - k]))
+            diagnostics_.push_back(std::move(d));
+        // Our own warnings only for a stage that compiled: its errors come first.
+        if (stages_[static_cast<std::size_t>(k)].compiled)
+            for (Diagnostic& d : scanStage(texts[k])) diagnostics_.push_back(std::move(d));
+    }
     if (!vs || !fs) {
         if (vs) glDeleteShader(vs);
         if (fs) glDeleteShader(fs);
@@ -369,9 +392,9 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
         glGetProgramInfoLog(program_, len, nullptr, buf.data());
         buf.resize(std::strlen(buf.c_str()));
         link_log_ = buf;
-        // Link errors concern the pair; the driver gives no position.
-        for (auto& d : parseInfoLog(link_log_, vertex.file + " + " + fragment.file))
-            diagnostics_.push_back(d);
+        // The driver gives no position: each problem is placed at the declaration it is about.
+        for (Diagnostic& d : explainLinkLog(link_log_, texts[0], texts[1]))
+            diagnostics_.push_back(std::move(d));
     }
     linked_ = ok == GL_TRUE;
     if (!linked_) return false;

@@ -73,12 +73,19 @@ std::string reportToJson(const Report& report) {
     json labs = json::array();
     for (const ReportLab& lab : report.labs) {
         json diags = json::array();
-        for (const ReportDiagnostic& d : lab.diagnostics)
-            diags.push_back({{"file", d.file},
-                             {"line", d.line},
-                             {"column", d.column},
-                             {"severity", d.severity},
-                             {"message", d.message}});
+        for (const ReportDiagnostic& d : lab.diagnostics) {
+            json j = {{"file", d.file},
+                      {"line", d.line},
+                      {"column", d.column},
+                      {"severity", d.severity},
+                      {"message", d.message}};
+            // Optional within schema 2: absent when empty, so older readers see what they knew.
+            if (!d.explanation.empty()) j["explanation"] = d.explanation;
+            if (!d.source_line.empty()) j["source_line"] = d.source_line;
+            if (!d.driver_message.empty()) j["driver_message"] = d.driver_message;
+            if (d.follow_on > 0) j["follow_on"] = d.follow_on;
+            diags.push_back(std::move(j));
+        }
         json scenes = json::array();
         for (const ReportScene& s : lab.scenes) {
             json passes = json::array();
@@ -172,7 +179,9 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
         lab.wall_ms = fromNumber(l.value("wall_ms", json()), 0.0);
         for (const json& d : l.value("diagnostics", json::array()))
             lab.diagnostics.push_back({d.value("file", ""), d.value("line", 0), d.value("column", 0),
-                                       d.value("severity", ""), d.value("message", "")});
+                                       d.value("severity", ""), d.value("message", ""),
+                                       d.value("explanation", ""), d.value("source_line", ""),
+                                       d.value("driver_message", ""), d.value("follow_on", 0)});
         for (const json& g : l.value("goals", json::array())) {
             ReportGoal goal;
             goal.id = g.value("id", "");
@@ -231,9 +240,7 @@ std::string reportToGradescope(const Report& report) {
     for (const ReportLab& lab : report.labs) {
         if (lab.scenes.empty()) {
             std::string output = lab.status + ": " + lab.message;
-            for (const ReportDiagnostic& d : lab.diagnostics)
-                output += "\n" + d.file + (d.line ? ":" + std::to_string(d.line) : "") + ": " + d.severity +
-                          ": " + d.message;
+            for (const ReportDiagnostic& d : lab.diagnostics) output += "\n" + formatDiagnostic(d);
             tests.push_back({{"name", lab.id},
                              {"score", number(lab.score)},
                              {"max_score", number(lab.max_score)},

@@ -89,12 +89,7 @@ std::string num(double v, const char* format = "%.3f") {
     return buf;
 }
 
-std::string diagnosticLine(const ReportDiagnostic& d) {
-    std::string s = d.file;
-    if (d.line > 0) s += ":" + std::to_string(d.line);
-    if (d.column > 0) s += ":" + std::to_string(d.column);
-    return s + ": " + d.severity + ": " + d.message;
-}
+std::string diagnosticLine(const ReportDiagnostic& d) { return formatDiagnostic(d); }
 
 }  // namespace
 

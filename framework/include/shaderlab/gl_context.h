@@ -39,7 +39,9 @@ struct ContextResult {
 };
 
 // Creates a headless OpenGL core context of at least 3.3, makes it current and loads the GL
-// entry points. A context that is too old is an error naming the version found.
+// entry points. A context that is too old is an error naming the version found. Turns Mesa's
+// on-disk shader cache off for the process (MESA_SHADER_CACHE_DISABLE, unless already set):
+// Mesa skips compiling a shader it has cached and then reports none of its warnings.
 ContextResult createHeadlessContext(Backend backend);
 
 // Loads GL entry points through `get_proc` into the loader and checks the version (>= 3.3

@@ -34,6 +34,9 @@ using LabCallback = std::function<void(const grader::Report&)>;
 grader::Report gradeSubmission(const std::string& submission_dir, const GradeOptions& options,
                                const LabCallback& on_lab = {});
 
+// A diagnostic as the report carries it.
+grader::ReportDiagnostic toReportDiagnostic(const Diagnostic& d);
+
 // Where a lab's golden image lives: <lab_dir>/golden/<scene>.png for the final image,
 // <scene>.<image>.png for another graded image (<image> is the pass, or pass.attachment when
 // its target has several), ".hdr" instead of ".png" for images compared in the hdr range, and

@@ -3,8 +3,9 @@
 // `#version 330 core` when there is none) followed by a `#line` directive, so the driver's line
 // numbers are the student's own. `#include "file"` lines are replaced by the file's text between
 // `#line` directives that give each included file its own source-string number, so diagnostics
-// name the file a line belongs to. This file does not decide what a failure is worth: the grader
-// does.
+// name the file a line belongs to. The logs are then explained in plain words, one error per root
+// cause, at the line to fix (framework/src/glsl_explain.h). This file does not decide what a
+// failure is worth: the grader does.
 #pragma once
 
 #include <cstdint>
@@ -20,9 +21,14 @@ namespace shaderlab {
 struct Diagnostic {
     std::string file;      // the student's file as named in lab.json, e.g. "phong.frag"
     int line = 0;          // 1-based, in that file; 0 when the driver gave none
-    int column = 0;        // 0 when unknown
+    int column = 0;        // 1-based character of `source_line`; 0 when unknown or not trustworthy
     std::string severity;  // "error" or "warning"
-    std::string message;
+    std::string message;   // in plain words: no parser jargon
+    // Defaulted so that {file, line, column, severity, message} still initialises the rest.
+    std::string explanation{};     // what usually causes it and how to fix it; may be empty
+    std::string source_line{};     // line `line` of `file` as written (tabs kept); may be empty
+    std::string driver_message{};  // the driver's own words, for instructors; empty for our own
+    int follow_on = 0;             // later errors of the stage dropped as probable consequences
 };
 
 // Reads the file an `#include "name"` in `includer` names (a FileText with ok = false and an
@@ -34,6 +40,7 @@ struct PreparedSource {
     std::string text;
     int first_student_line = 1;
     std::vector<std::string> files;  // by source-string number: [0] the file itself, then includes
+    std::vector<std::string> texts;  // their text, by the same numbers
     std::vector<Diagnostic> errors;  // includes that could not be read (or nest too deep)
 };
 
@@ -46,7 +53,7 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
 // Parses a driver info log (Mesa "0:12(5): error: ...", NVIDIA "0(12) : error C1008: ...",
 // "ERROR: 0:12: ...") into diagnostics. The leading source-string number picks the file from
 // `files` (the first one when out of range). Lines it cannot parse become diagnostics with line
-// 0 so nothing the driver said is lost.
+// 0 so nothing the driver said is lost; Mesa's indented candidate lines join the message above.
 std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<std::string>& files);
 std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& file);
 

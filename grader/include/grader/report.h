@@ -16,12 +16,20 @@ constexpr int kReportSchemaVersion = 2;
 //   passed, failed: rendered and judged; compile_error, link_error: the shaders did not build;
 //   timeout, crashed: the render process was stopped or died; missing: a student file is absent.
 // render_error (a GL error or a broken scene file) is reported as "crashed" with its message.
+// A compile, link or framework message (docs/report-format.md): `message` in plain words, an
+// `explanation` for the common mistakes, the student's `source_line` with `column` (1-based, 0:
+// no caret) where known, the driver's own words in `driver_message`, and how many later errors
+// were dropped as consequences of this one in `follow_on`.
 struct ReportDiagnostic {
     std::string file;
     int line = 0;
     int column = 0;
     std::string severity;
     std::string message;
+    std::string explanation{};
+    std::string source_line{};
+    std::string driver_message{};
+    int follow_on = 0;
 };
 
 struct ReportMetrics {
@@ -94,6 +102,15 @@ struct Report {
     std::vector<ReportLab> labs;
     double score = 0.0, max_score = 0.0;
 };
+
+// A diagnostic as a person reads it, lines joined by '\n' (no trailing newline):
+//   phong.frag:25: error: missing `;` at the end of this line
+//      25 |     vec3 v = normalize(u_camera_position - v_world_position)
+//         |                                                             ^
+//         = Every statement ends with `;`. ...
+// `prefix` goes before the file name (e.g. "01-phong/"), `indent` before every line.
+std::string formatDiagnostic(const ReportDiagnostic& d, const std::string& prefix = "",
+                             const std::string& indent = "");
 
 // Each returns the text; the caller writes files.
 std::string reportToJson(const Report& report);

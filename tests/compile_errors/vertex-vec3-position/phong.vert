@@ -1,0 +1,22 @@
+#version 330 core
+// Reference solution, 01-phong: world-space position and normal for per-fragment lighting.
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+
+uniform mat4 u_model;
+uniform mat4 u_view;
+uniform mat4 u_projection;
+uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model)))
+
+out vec3 v_world_position;
+out vec3 v_world_normal;
+
+void main() {
+    vec4 world = u_model * vec4(a_position, 1.0);
+    v_world_position = world.xyz;
+    // Normals transform with the inverse transpose so they stay perpendicular to the surface
+    // under non-uniform scale.
+    v_world_normal = u_normal_matrix * a_normal;
+    gl_Position = world.xyz;
+}
