@@ -5,6 +5,7 @@
 // with at least six conceptual mistakes and three correct alternatives.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -47,7 +48,8 @@ TEST_P(LabCorpus, HasEnoughMistakesAndAlternatives) {
 }
 
 TEST_P(LabCorpus, EveryVerdictIsTheExpectedOne) {
-    const fs::path out = fs::temp_directory_path() / ("shaderlab_corpus_" + GetParam());
+    const fs::path out =
+        fs::temp_directory_path() / ("shaderlab_corpus_" + GetParam() + "_" + std::to_string(::getpid()));
     fs::remove_all(out);
     const std::string cmd =
         std::string(SHADERLAB_CLI) + " corpus --lab " + GetParam() + " --out " + out.string() + " 2>&1";
