@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "commands.h"
@@ -171,11 +172,13 @@ struct MistakeRun {
 };
 
 // A lab's known-mistake hints from its graded mistakes: for every scene a mistake fails, its
-// picture of the scene's first wrong image (as the report wrote it), made small; then the
-// pictures two mistakes share are dropped, since they cannot tell the two apart.
-LabHints collectHints(const std::vector<MistakeRun>& runs, std::vector<std::string>* errors,
-                      std::size_t* dropped = nullptr) {
+// picture of the scene's first wrong image (as the report wrote it), made small, except the
+// `unstable` ones; then the pictures two mistakes share are dropped, since they cannot tell the
+// two apart.
+LabHints collectHints(const std::vector<MistakeRun>& runs, const std::vector<std::string>& unstable,
+                      std::vector<std::string>* errors, std::size_t* dropped = nullptr) {
     LabHints hints;
+    hints.unstable = unstable;
     for (const MistakeRun& run : runs) {
         if (run.report.labs.empty()) continue;
         for (const grader::ReportScene& scene : run.report.labs.front().scenes) {
@@ -194,6 +197,7 @@ LabHints collectHints(const std::vector<MistakeRun>& runs, std::vector<std::stri
                 m.scene = scene.name;
                 m.image = pass.name;
                 m.file = run.c->name + "/" + scene.name + "." + pass.name + ".png";
+                if (std::find(unstable.begin(), unstable.end(), m.file) != unstable.end()) continue;
                 m.picture = hintPicture(picture, hints.factor);
                 hints.hints.push_back(std::move(m));
             }
@@ -377,13 +381,12 @@ int runCorpus(const CorpusArgs& args) {
         }
         // The stored hints must be what the mistakes draw now (`shaderlab goldens` writes them).
         std::vector<std::string> hint_errors;
-        const LabHints fresh = collectHints(mistakes, &hint_errors);
         LabHints stored;
         std::string stored_error;
         const fs::path hints_dir = fs::path(parsed.spec.lab_dir) / "hints";
-        std::string stale = loadLabHints(hints_dir.string(), &stored, &stored_error)
-                                ? compareHints(stored, fresh)
-                                : stored_error;
+        const bool readable_hints = loadLabHints(hints_dir.string(), &stored, &stored_error);
+        const LabHints fresh = collectHints(mistakes, stored.unstable, &hint_errors);
+        std::string stale = readable_hints ? compareHints(stored, fresh) : stored_error;
         if (!hint_errors.empty()) stale = hint_errors.front();
         std::printf(
             "  %-4s known-mistake hints: %zu pictures; %d of %zu mistakes recognised by them, %d also taken "
@@ -465,7 +468,9 @@ std::vector<std::string> writeHints(const std::string& labs_root, const std::str
         options.labs = {id};
         options.goldens_root = stored_root;
         options.hints = false;
-        std::vector<MistakeRun> runs;
+        // Every mistake twice: a picture that differs between the two renders (a mistake that
+        // reads memory nothing wrote) could not recognise anyone, nor be checked for staleness.
+        std::vector<MistakeRun> runs[2];
         for (const Case& c : cases) {
             if (c.kind != "mistake") continue;
             const fs::path submission = scratch / id / "submissions" / c.name;
@@ -475,17 +480,38 @@ std::vector<std::string> writeHints(const std::string& labs_root, const std::str
                 errors.push_back(error);
                 continue;
             }
-            options.out_dir = (scratch / id / "reports" / c.name).string();
-            fs::create_directories(options.out_dir, ec);
-            runs.push_back({&c, gradeSubmission(submission.string(), options), options.out_dir});
+            for (int k = 0; k < 2; ++k) {
+                options.out_dir = (scratch / id / ("reports" + std::to_string(k)) / c.name).string();
+                fs::create_directories(options.out_dir, ec);
+                runs[k].push_back({&c, gradeSubmission(submission.string(), options), options.out_dir});
+            }
+        }
+        // One picture that differs makes all of that mistake's suspect: it reads undefined memory,
+        // which may happen to hold the same garbage twice in a row and other garbage tomorrow.
+        std::vector<std::string> unstable;
+        {
+            std::vector<std::string> ignored;
+            const LabHints first = collectHints(runs[0], {}, &ignored),
+                           second = collectHints(runs[1], {}, &ignored);
+            std::set<std::string> unstable_mistakes;
+            for (const MistakeHint& a : first.hints) {
+                bool same = false;
+                for (const MistakeHint& b : second.hints)
+                    same = same || (b.file == a.file && b.picture.pixels == a.picture.pixels);
+                if (!same) unstable_mistakes.insert(a.mistake);
+            }
+            for (const MistakeHint& a : first.hints)
+                if (unstable_mistakes.count(a.mistake)) unstable.push_back(a.file);
         }
         std::size_t dropped = 0;
-        const LabHints hints = collectHints(runs, &errors, &dropped);
+        const LabHints hints = collectHints(runs[0], unstable, &errors, &dropped);
         std::string error;
         if (!writeLabHints(hints_dir.string(), hints, &error)) errors.push_back(error);
         std::printf(
-            "%s: %zu known-mistake pictures of %zu mistakes (%zu left out: two mistakes draw them alike)\n",
-            id.c_str(), hints.hints.size(), runs.size(), dropped);
+            "%s: %zu known-mistake pictures of %zu mistakes (left out: %zu drawn alike by two mistakes, %zu "
+            "not "
+            "drawn the same way twice)\n",
+            id.c_str(), hints.hints.size(), runs[0].size(), dropped, unstable.size());
     }
     fs::remove_all(scratch, ec);
     return errors;

@@ -37,6 +37,7 @@ bool loadLabHints(const std::string& hints_dir, LabHints* out, std::string* erro
     }
     out->factor = doc.value("factor", 2);
     out->min_psnr_db = doc.value("min_psnr_db", 40.0);
+    out->unstable = doc.value("unstable", std::vector<std::string>{});
     for (const json& h : doc["hints"]) {
         MistakeHint m;
         m.mistake = h.value("mistake", "");
@@ -58,7 +59,8 @@ bool loadLabHints(const std::string& hints_dir, LabHints* out, std::string* erro
 bool writeLabHints(const std::string& hints_dir, const LabHints& hints, std::string* error) {
     std::error_code ec;
     fs::remove_all(hints_dir, ec);
-    if (hints.hints.empty()) return true;
+    if (hints.hints.empty() && hints.unstable.empty()) return true;
+    fs::create_directories(hints_dir, ec);
     json list = json::array();
     for (const MistakeHint& m : hints.hints) {
         const fs::path file = fs::path(hints_dir) / m.file;
@@ -73,7 +75,8 @@ bool writeLabHints(const std::string& hints_dir, const LabHints& hints, std::str
     const json doc = {{"$comment", "Written by `shaderlab goldens` from tests/corpus; do not edit."},
                       {"factor", hints.factor},
                       {"min_psnr_db", hints.min_psnr_db},
-                      {"hints", list}};
+                      {"hints", list},
+                      {"unstable", hints.unstable}};
     std::ofstream out(fs::path(hints_dir) / "hints.json", std::ios::binary);
     out << doc.dump(1) << "\n";
     if (!out) {

@@ -636,9 +636,9 @@ std::string reportToHtml(const Report& report, const ImageEmbedding& images) {
         }
     }
     h << "<div class=\"card\"><p><span class=\"big\">" << num(report.score, "%.2f") << " / "
-      << num(report.max_score, "%.2f") << "</span> points &middot; <b>" << scenes_passed << " of " << scenes
-      << "</b> scenes pass &middot; <b>" << labs_passed << " of " << report.labs.size()
-      << "</b> labs pass</p>\n";
+      << num(report.max_score, "%.2f") << "</span> points";
+    if (scenes > 0) h << " &middot; <b>" << scenes_passed << " of " << scenes << "</b> scenes pass";
+    h << " &middot; <b>" << labs_passed << " of " << report.labs.size() << "</b> labs pass</p>\n";
     h << "<div class=\"scroll\"><table><tr><th>lab</th><th>points</th><th>scenes passing</th><th>goals "
          "met</th></tr>\n";
     for (const ReportLab& lab : report.labs) {
@@ -648,8 +648,13 @@ std::string reportToHtml(const Report& report, const ImageEmbedding& images) {
         h << "<tr><td class=\"num\"><a href=\"#" << labAnchor(lab.id) << "\">" << escapeMarkup(lab.id)
           << "</a> <span class=\"badge " << (lab.status == "passed" ? "passed" : "failed") << "\">"
           << escapeMarkup(lab.status) << "</span></td><td class=\"num\">" << num(lab.score, "%.2f") << " / "
-          << num(lab.max_score, "%.2f") << "</td><td class=\"num\">" << passed << " of " << lab.scenes.size()
-          << "</td><td class=\"num\">" << met << " of " << lab.goals.size() << "</td></tr>\n";
+          << num(lab.max_score, "%.2f") << "</td>";
+        // A lab that did not render has neither scenes nor goals to count.
+        if (lab.scenes.empty())
+            h << "<td class=\"num\">&mdash;</td><td class=\"num\">&mdash;</td></tr>\n";
+        else
+            h << "<td class=\"num\">" << passed << " of " << lab.scenes.size() << "</td><td class=\"num\">"
+              << met << " of " << lab.goals.size() << "</td></tr>\n";
     }
     h << "</table></div></div>\n";
     writeLookFirst(h, report);
@@ -677,10 +682,12 @@ std::string reportToHtml(const Report& report, const ImageEmbedding& images) {
         for (const ReportScene& s : lab.scenes)
             if (s.status == "passed") writeScene(h, lab, s, pics);
     }
-    h << "<footer>shaderlab " << escapeMarkup(report.tool_version) << ". "
-      << (pics.embedded() ? "The pictures are embedded in this page, which opens anywhere on its own."
-                          : "The pictures are linked from the folders beside this page: keep them together.")
-      << "</footer>\n</main>\n</body>\n</html>\n";
+    h << "<footer>shaderlab " << escapeMarkup(report.tool_version) << ".";
+    if (!picturePaths(report).empty())
+        h << (pics.embedded()
+                  ? " The pictures are embedded in this page, which opens anywhere on its own."
+                  : " The pictures are linked from the folders beside this page: keep them together.");
+    h << "</footer>\n</main>\n</body>\n</html>\n";
     return h.str();
 }
 

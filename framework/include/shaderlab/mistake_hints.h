@@ -31,6 +31,9 @@ struct LabHints {
     int factor = 2;             // pictures are stored this many times smaller
     double min_psnr_db = 40.0;  // and match a student's picture from this PSNR up
     std::vector<MistakeHint> hints;
+    // Pictures left out because the mistake does not draw them the same way twice (it reads
+    // memory nothing wrote): the file names they would have.
+    std::vector<std::string> unstable;
 };
 
 // What a failing picture of a mistake becomes in storage: downsampled, 8-bit RGB.
