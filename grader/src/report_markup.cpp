@@ -368,9 +368,10 @@ void writeFigure(std::ostringstream& h, const Figure& f, const ReportPass& p,
     h << "</div><figcaption>" << f.caption_html << "</figcaption></figure>\n";
 }
 
-// The pictures and numbers of one graded image.
+// The pictures and numbers of one graded image. `full`: with the difference pictures and the
+// close-up; otherwise the student's and the reference's only, and a matching image the student's.
 void writeImageBlock(std::ostringstream& h, const ReportPass& p, const detail::AllOrNothing& pics,
-                     const std::string& label) {
+                     const std::string& label, bool full) {
     if (!label.empty()) {
         h << "<p class=\"passname\">" << label << " <span class=\""
           << (p.passed ? "ok\">matches" : "bad\">differs") << "</span>";
@@ -381,33 +382,37 @@ void writeImageBlock(std::ostringstream& h, const ReportPass& p, const detail::A
     }
     const bool broken = p.metrics.nan_count + p.metrics.inf_count > 0;
     h << "<div class=\"pics\">\n";
-    writeFigure(
-        h,
-        {p.student_image, "your image",
-         std::string("yours") + (broken ? ": <span class=\"magenta\">magenta</span> = NaN or Inf" : "")},
-        p, pics);
-    writeFigure(h, {p.reference_image, "the reference image", "reference"}, p, pics);
-    writeFigure(
-        h,
-        {p.signed_image, "difference: orange where yours is too bright, blue where it is too dark",
-         "difference: <span class=\"bright\">orange</span> too bright, <span class=\"dark\">blue</span> "
-         "too dark"},
-        p, pics);
     writeFigure(h,
-                {p.diff_image, "FLIP error map",
-                 "FLIP error: black none, pale yellow most; <span style=\"color:#008b8b\">cyan</span> rings "
-                 "pixels that differ"},
+                {p.student_image, "your image",
+                 std::string(p.passed ? "yours (matches the reference)" : "yours") +
+                     (broken ? ": <span class=\"magenta\">magenta</span> = NaN or Inf" : "")},
                 p, pics);
-    if (!p.zoom_image.empty()) {
-        const PixelBox& z = p.zoom_region;
-        const std::string where = z.empty() ? std::string()
-                                            : "x " + std::to_string(z.x0) + "\xE2\x80\x93" +
-                                                  std::to_string(z.x1) + ", y " + std::to_string(z.y0) +
-                                                  "\xE2\x80\x93" + std::to_string(z.y1);
-        writeFigure(h,
-                    {p.zoom_image, "enlarged region: yours, reference, FLIP error",
-                     "enlarged (" + where + "): yours, reference, FLIP error", false, true},
-                    p, pics);
+    // An image that matches shows once: the reference looks the same.
+    if (!p.passed) writeFigure(h, {p.reference_image, "the reference image", "reference"}, p, pics);
+    if (full) {
+        writeFigure(
+            h,
+            {p.signed_image, "difference: orange where yours is too bright, blue where it is too dark",
+             "difference: <span class=\"bright\">orange</span> too bright, <span class=\"dark\">blue</span> "
+             "too dark"},
+            p, pics);
+        writeFigure(
+            h,
+            {p.diff_image, "FLIP error map",
+             "FLIP error: black none, pale yellow most; <span style=\"color:#008b8b\">cyan</span> rings "
+             "pixels that differ"},
+            p, pics);
+        if (!p.zoom_image.empty()) {
+            const PixelBox& z = p.zoom_region;
+            const std::string where = z.empty() ? std::string()
+                                                : "x " + std::to_string(z.x0) + "\xE2\x80\x93" +
+                                                      std::to_string(z.x1) + ", y " + std::to_string(z.y0) +
+                                                      "\xE2\x80\x93" + std::to_string(z.y1);
+            writeFigure(h,
+                        {p.zoom_image, "enlarged region: yours, reference, FLIP error",
+                         "enlarged (" + where + "): yours, reference, FLIP error", false, true},
+                        p, pics);
+        }
     }
     h << "</div>\n";
     if (!p.zoom_region.empty() || !p.non_finite_box.empty())
@@ -483,7 +488,7 @@ void writeScene(std::ostringstream& h, const ReportLab& lab, const ReportScene& 
             h << " Its share of points is not earned because a goal it shows fails in another scene.";
         h << "</p>\n<details><summary>Pictures and numbers</summary>\n";
         for (const ReportPass& p : s.passes.empty() ? std::vector<ReportPass>{last} : s.passes)
-            writeImageBlock(h, p, pics, multipass ? passLabel(p, "Image") : "");
+            writeImageBlock(h, p, pics, multipass ? passLabel(p, "Image") : "", false);
         h << "</details>\n</section>\n";
         return;
     }
@@ -494,16 +499,16 @@ void writeScene(std::ostringstream& h, const ReportLab& lab, const ReportScene& 
         if (p.name == s.first_failing_pass) focus = &p;
     std::vector<const ReportPass*> shown;
     if (focus != nullptr && focus->name != last.name) {
-        writeImageBlock(h, *focus, pics, passLabel(*focus, "First wrong pass"));
+        writeImageBlock(h, *focus, pics, passLabel(*focus, "First wrong pass"), true);
         shown.push_back(focus);
     }
-    writeImageBlock(h, last, pics, multipass ? passLabel(last, "Final image") : "");
+    writeImageBlock(h, last, pics, multipass ? passLabel(last, "Final image") : "", !last.passed);
     std::vector<const ReportPass*> rest;
     for (const ReportPass& p : s.passes)
         if (&p != focus && p.name != last.name) rest.push_back(&p);
     if (!rest.empty()) {
         h << "<details><summary>The other graded images (" << rest.size() << ")</summary>\n";
-        for (const ReportPass* p : rest) writeImageBlock(h, *p, pics, passLabel(*p, "Image"));
+        for (const ReportPass* p : rest) writeImageBlock(h, *p, pics, passLabel(*p, "Image"), false);
         h << "</details>\n";
     }
     h << "</section>\n";
@@ -523,12 +528,22 @@ void writeGoals(std::ostringstream& h, const ReportLab& lab) {
     h << "<div class=\"scroll\"><table class=\"goals\"><tr><th>goal</th><th>points</th><th></th></tr>\n";
     for (const ReportGoal& g : lab.goals) {
         h << "<tr><td>" << escapeMarkup(g.title);
+        // "<scene>/<pass>" checks grouped by scene: "fails in teapot (blur1_h, blur1_v), cube (...)".
+        std::string open_scene;
         for (std::size_t i = 0; i < g.failing.size(); ++i) {
-            const std::string scene = g.failing[i].substr(0, g.failing[i].find('/'));
-            h << (i ? ", " : "<br><span class=\"info\">fails in ") << "<a href=\"#"
-              << sceneAnchor(lab.id, scene) << "\">" << escapeMarkup(g.failing[i]) << "</a>";
+            const std::size_t slash = g.failing[i].find('/');
+            const std::string scene = g.failing[i].substr(0, slash);
+            const std::string pass = slash == std::string::npos ? "" : g.failing[i].substr(slash + 1);
+            if (i == 0 || scene != open_scene) {
+                h << (i == 0 ? "<br><span class=\"info\">fails in " : "), ") << "<a href=\"#"
+                  << sceneAnchor(lab.id, scene) << "\">" << escapeMarkup(scene) << "</a> (";
+                open_scene = scene;
+            } else {
+                h << ", ";
+            }
+            h << escapeMarkup(pass);
         }
-        if (!g.failing.empty()) h << "</span>";
+        if (!g.failing.empty()) h << ")</span>";
         h << "</td><td class=\"num\">" << num(g.met ? g.points : 0.0, "%.2f") << " / "
           << num(g.points, "%.2f") << "</td><td class=\"num " << (g.met ? "ok\">met" : "bad\">not met")
           << "</td></tr>\n";
@@ -544,7 +559,12 @@ const ReportScene* findScene(const ReportLab& lab, const std::string& name) {
 
 // Where to look first: the first lab that did not pass; in it, the first goal not met, its first
 // failing check's scene, and that scene's first wrong pass.
-void writeLookFirst(std::ostringstream& h, const Report& report) {
+// `links`: to the sections of report.html (Gradescope's copy has none to link to).
+void writeLookFirst(std::ostringstream& h, const Report& report, bool links) {
+    const auto link = [&](const std::string& anchor, const std::string& text) {
+        return links ? "<a href=\"#" + anchor + "\">" + escapeMarkup(text) + "</a>"
+                     : "<b>" + escapeMarkup(text) + "</b>";
+    };
     const ReportLab* lab = nullptr;
     for (const ReportLab& l : report.labs)
         if (l.status != "passed") {
@@ -558,9 +578,8 @@ void writeLookFirst(std::ostringstream& h, const Report& report) {
     }
     h << "<div class=\"card first\"><h2 style=\"margin-top:0;border:0\">Look here first</h2>\n";
     if (lab->scenes.empty()) {
-        h << "<p><a href=\"#" << labAnchor(lab->id) << "\">" << escapeMarkup(lab->id)
-          << "</a> did not render (" << escapeMarkup(lab->status) << "). " << escapeMarkup(lab->message)
-          << "</p>\n";
+        h << "<p>" << link(labAnchor(lab->id), lab->id) << " did not render (" << escapeMarkup(lab->status)
+          << "). " << escapeMarkup(lab->message) << "</p>\n";
         if (!lab->diagnostics.empty())
             h << "<pre>" << escapeMarkup(diagnosticLine(lab->diagnostics.front())) << "</pre>\n";
         h << "</div>\n";
@@ -583,15 +602,13 @@ void writeLookFirst(std::ostringstream& h, const Report& report) {
                 break;
             }
     if (scene == nullptr) {
-        h << "<p><a href=\"#" << labAnchor(lab->id) << "\">" << escapeMarkup(lab->id)
-          << "</a>: " << escapeMarkup(lab->status) << ". " << escapeMarkup(lab->message) << "</p></div>\n";
+        h << "<p>" << link(labAnchor(lab->id), lab->id) << ": " << escapeMarkup(lab->status) << ". "
+          << escapeMarkup(lab->message) << "</p></div>\n";
         return;
     }
-    h << "<p><a href=\"#" << sceneAnchor(lab->id, scene->name) << "\">" << escapeMarkup(lab->id)
-      << " \xE2\x80\xBA " << escapeMarkup(scene->name) << "</a>";
-    if (!scene->first_failing_pass.empty() && scene->passes.size() > 1)
-        h << ", first wrong image <code>" << escapeMarkup(scene->first_failing_pass) << "</code>";
-    h << ": " << escapeMarkup(scene->message) << "</p>\n";
+    // The scene's message names its first wrong pass when there are several.
+    h << "<p>" << link(sceneAnchor(lab->id, scene->name), lab->id + " \xE2\x80\xBA " + scene->name) << ": "
+      << escapeMarkup(scene->message) << "</p>\n";
     if (goal != nullptr)
         h << "<p>It decides the goal \xE2\x80\x9C" << escapeMarkup(goal->title) << "\xE2\x80\x9D ("
           << num(goal->points, "%.2f") << " points).</p>\n";
@@ -605,10 +622,21 @@ std::vector<std::string> picturePaths(const Report& report) {
         for (const ReportScene& s : lab.scenes) {
             const std::vector<ReportPass> passes =
                 s.passes.empty() ? std::vector<ReportPass>{finalOf(s)} : s.passes;
-            for (const ReportPass& p : passes)
-                for (const std::string* path :
-                     {&p.student_image, &p.reference_image, &p.diff_image, &p.signed_image, &p.zoom_image})
+            for (const ReportPass& p : passes) {
+                // As writeScene shows them: the difference pictures of a failing scene's first
+                // wrong image and of its final image when that fails; of every other image the
+                // student's and the reference's only (the rest stay on disk and in report.json), so
+                // that the page of a whole course stays small enough to embed.
+                const bool full = s.status != "passed" && !p.passed &&
+                                  (p.name == s.first_failing_pass || &p == &passes.back());
+                std::vector<const std::string*> shown = {&p.student_image};
+                if (!p.passed) shown.push_back(&p.reference_image);
+                if (full)
+                    for (const std::string* extra : {&p.diff_image, &p.signed_image, &p.zoom_image})
+                        shown.push_back(extra);
+                for (const std::string* path : shown)
                     if (!path->empty()) paths.push_back(*path);
+            }
         }
     return paths;
 }
@@ -657,7 +685,7 @@ std::string reportToHtml(const Report& report, const ImageEmbedding& images) {
               << met << " of " << lab.goals.size() << "</td></tr>\n";
     }
     h << "</table></div></div>\n";
-    writeLookFirst(h, report);
+    writeLookFirst(h, report, true);
 
     for (const ReportLab& lab : report.labs) {
         h << "<h2 id=\"" << labAnchor(lab.id) << "\">" << escapeMarkup(lab.id);
@@ -705,23 +733,35 @@ std::string gradescopeGoalHtml(const ReportLab& lab, const ReportGoal& goal, Bud
     h << "<p><b>Not met</b> (0 of " << num(goal.points, "%.2f")
       << " points). A goal earns its points only when every image that shows it matches the reference. "
          "These do not:</p>\n";
+    // The failing "<scene>/<pass>" checks grouped by scene, in order.
+    std::vector<std::pair<std::string, std::vector<std::string>>> scenes;
     for (const std::string& check : goal.failing) {
-        const std::string scene_name = check.substr(0, check.find('/'));
-        const std::string pass_name =
-            check.find('/') == std::string::npos ? "" : check.substr(check.find('/') + 1);
-        h << "<h4>" << escapeMarkup(check) << "</h4>\n";
+        const std::size_t slash = check.find('/');
+        const std::string scene = check.substr(0, slash);
+        if (scenes.empty() || scenes.back().first != scene) scenes.push_back({scene, {}});
+        if (slash != std::string::npos) scenes.back().second.push_back(check.substr(slash + 1));
+    }
+    std::string last_hint;
+    for (const auto& [scene_name, passes] : scenes) {
+        h << "<h4>" << escapeMarkup(scene_name);
+        for (std::size_t i = 0; i < passes.size(); ++i) h << (i ? ", " : " (") << escapeMarkup(passes[i]);
+        h << (passes.empty() ? "" : ")") << "</h4>\n";
         const ReportScene* scene = findScene(lab, scene_name);
         if (scene == nullptr) continue;
         if (!scene->message.empty()) h << "<p>" << escapeMarkup(scene->message) << "</p>\n";
-        if (!scene->hint.mistake.empty())
+        if (!scene->hint.mistake.empty() && scene->hint.about != last_hint)
             h << "<p><b>This looks like a known mistake:</b> " << escapeMarkup(scene->hint.about) << "</p>\n";
-        // The check's own failing image, else the scene's final one.
+        last_hint = scene->hint.about;
+        // The pictures of one failing image of these checks: the scene's first wrong image when it
+        // is one of them, else the first; the final image when none is found.
         ReportPass shown = finalOf(*scene);
-        for (const ReportPass& p : scene->passes)
-            if (p.pass == pass_name && !p.passed) {
-                shown = p;
-                break;
-            }
+        const ReportPass* first = nullptr;
+        for (const ReportPass& p : scene->passes) {
+            if (p.passed || std::find(passes.begin(), passes.end(), p.pass) == passes.end()) continue;
+            if (first == nullptr || p.name == scene->first_failing_pass) first = &p;
+            if (p.name == scene->first_failing_pass) break;
+        }
+        if (first != nullptr) shown = *first;
         std::string row;
         for (const auto& [path, alt] :
              {std::make_pair(&shown.student_image, "yours"),
@@ -733,16 +773,17 @@ std::string gradescopeGoalHtml(const ReportLab& lab, const ReportGoal& goal, Bud
                 row += "<img src=\"" + uri + "\" width=\"160\" alt=\"" + alt + "\" title=\"" + alt + "\"> ";
         }
         if (!row.empty())
-            h << "<p>" << row
-              << "</p>\n<p><i>Yours, the reference, the difference (orange: too bright, blue: "
-                 "too dark), the FLIP error (pale yellow: largest).</i></p>\n";
+            h << "<p>" << row << "</p>\n<p><i>Image <code>" << escapeMarkup(shown.name)
+              << "</code>: yours, the reference, the difference (orange: too bright, blue: too dark), the "
+                 "FLIP "
+                 "error (pale yellow: largest).</i></p>\n";
     }
     return h.str();
 }
 
 std::string gradescopeSummaryHtml(const Report& report) {
     std::ostringstream h;
-    writeLookFirst(h, report);
+    writeLookFirst(h, report, false);
     return h.str();
 }
 
