@@ -6,12 +6,15 @@
 // the files that differ from the reference solution. Grading uses the stored goldens unless
 // --reference is given. Exit 0 when every expectation holds, 1 when one does not, 2 when the
 // corpus cannot be read.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "commands.h"
@@ -20,6 +23,7 @@
 #include "shaderlab/json_schema_check.h"
 #include "shaderlab/lab_catalog.h"
 #include "shaderlab/lab_spec.h"
+#include "shaderlab/mistake_hints.h"
 #include "shaderlab/paths.h"
 
 namespace fs = std::filesystem;
@@ -160,6 +164,72 @@ bool materialise(const LabSpec& spec, const fs::path& reference_lab, const fs::p
     return true;
 }
 
+// A mistake graded into `out_dir`: where its pictures are.
+struct MistakeRun {
+    const Case* c = nullptr;
+    grader::Report report;
+    fs::path out_dir;
+};
+
+// A lab's known-mistake hints from its graded mistakes: for every scene a mistake fails, its
+// picture of the scene's first wrong image (as the report wrote it), made small, except the
+// `unstable` ones; then the pictures two mistakes share are dropped, since they cannot tell the
+// two apart.
+LabHints collectHints(const std::vector<MistakeRun>& runs, const std::vector<std::string>& unstable,
+                      std::vector<std::string>* errors, std::size_t* dropped = nullptr) {
+    LabHints hints;
+    hints.unstable = unstable;
+    for (const MistakeRun& run : runs) {
+        if (run.report.labs.empty()) continue;
+        for (const grader::ReportScene& scene : run.report.labs.front().scenes) {
+            if (scene.status == "passed" || scene.first_failing_pass.empty()) continue;
+            for (const grader::ReportPass& pass : scene.passes) {
+                if (pass.name != scene.first_failing_pass || pass.student_image.empty()) continue;
+                grader::Image picture;
+                std::string error;
+                if (!grader::readPng((run.out_dir / pass.student_image).string(), &picture, &error)) {
+                    errors->push_back(error);
+                    continue;
+                }
+                MistakeHint m;
+                m.mistake = run.c->name;
+                m.about = run.c->about;
+                m.scene = scene.name;
+                m.image = pass.name;
+                m.file = run.c->name + "/" + scene.name + "." + pass.name + ".png";
+                if (std::find(unstable.begin(), unstable.end(), m.file) != unstable.end()) continue;
+                m.picture = hintPicture(picture, hints.factor);
+                hints.hints.push_back(std::move(m));
+            }
+        }
+    }
+    const std::size_t all = hints.hints.size();
+    dropAmbiguousHints(&hints);
+    if (dropped != nullptr) *dropped = all - hints.hints.size();
+    return hints;
+}
+
+// Empty when the stored hints are what `fresh` would write; otherwise what differs.
+std::string compareHints(const LabHints& stored, const LabHints& fresh) {
+    if (stored.factor != fresh.factor || stored.hints.size() != fresh.hints.size())
+        return std::to_string(stored.hints.size()) + " stored pictures, " +
+               std::to_string(fresh.hints.size()) + " fresh";
+    for (std::size_t i = 0; i < stored.hints.size(); ++i) {
+        const MistakeHint& a = stored.hints[i];
+        const MistakeHint& b = fresh.hints[i];
+        if (a.file != b.file || a.about != b.about || a.picture.width != b.picture.width ||
+            a.picture.height != b.picture.height)
+            return a.file + " differs from " + b.file;
+        // Stored as 8-bit PNG and made the same way: equal to the last bit when fresh.
+        for (int y = 0; y < a.picture.height; ++y)
+            for (int x = 0; x < a.picture.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    if (a.picture.at(x, y, a.picture.channels >= 3 ? c : 0) != b.picture.at(x, y, c))
+                        return a.file + " is not what the mistake draws now";
+    }
+    return {};
+}
+
 Outcome judge(const std::string& lab, const Case& c, const grader::Report& report, const std::string& where) {
     Outcome o;
     o.lab = lab;
@@ -277,6 +347,8 @@ int runCorpus(const CorpusArgs& args) {
             }
             runs.emplace_back(c, submission);
         }
+        std::vector<MistakeRun> mistakes;
+        int recognised = 0, taken_for_another = 0;
         for (const auto& [c, submission] : runs) {
             GradeOptions options = base;
             options.labs = {id};
@@ -287,14 +359,49 @@ int runCorpus(const CorpusArgs& args) {
             report.tool_version = SHADERLAB_VERSION;
             const fs::path report_file = fs::path(options.out_dir) / "report.json";
             std::ofstream(report_file) << grader::reportToJson(report);
-            std::ofstream(fs::path(options.out_dir) / "report.html") << grader::reportToHtml(report);
+            std::ofstream(fs::path(options.out_dir) / "report.html")
+                << grader::reportToHtml(report, {options.out_dir, 20u << 20});
             Outcome o = judge(id, c, report, report_file.string());
+            if (c.kind == "mistake" && !report.labs.empty()) {
+                bool own = false, other = false;
+                for (const grader::ReportScene& s : report.labs.front().scenes) {
+                    own = own || s.hint.mistake == c.name;
+                    other = other || (!s.hint.mistake.empty() && s.hint.mistake != c.name);
+                }
+                recognised += own;
+                taken_for_another += other;
+                mistakes.push_back({&c, report, options.out_dir});
+            }
             std::string failed;
             for (const std::string& g : o.goals_failed) failed += (failed.empty() ? "" : ",") + g;
             std::printf("  %-4s %-30s %-11s %-13s %6.2f / %-6.2f %s\n", o.ok ? "ok" : "FAIL", c.name.c_str(),
                         c.kind.c_str(), o.status.c_str(), o.score, o.max_score,
                         failed.empty() ? "" : ("goals not met: " + failed).c_str());
             if (!o.ok) std::printf("       expected: %s (%s)\n", o.why.c_str(), c.about.c_str());
+            outcomes.push_back(std::move(o));
+        }
+        // The stored hints must be what the mistakes draw now (`shaderlab goldens` writes them).
+        std::vector<std::string> hint_errors;
+        LabHints stored;
+        std::string stored_error;
+        const fs::path hints_dir = fs::path(parsed.spec.lab_dir) / "hints";
+        const bool readable_hints = loadLabHints(hints_dir.string(), &stored, &stored_error);
+        const LabHints fresh = collectHints(mistakes, stored.unstable, &hint_errors);
+        std::string stale = readable_hints ? compareHints(stored, fresh) : stored_error;
+        if (!hint_errors.empty()) stale = hint_errors.front();
+        std::printf(
+            "  %-4s known-mistake hints: %zu pictures; %d of %zu mistakes recognised by them, %d also taken "
+            "for another in some scene\n",
+            stale.empty() ? "ok" : "FAIL", fresh.hints.size(), recognised, mistakes.size(),
+            taken_for_another);
+        if (!stale.empty()) {
+            std::printf("       %s: %s (run `shaderlab goldens` and commit)\n", hints_dir.string().c_str(),
+                        stale.c_str());
+            Outcome o;
+            o.lab = id;
+            o.name = "hints";
+            o.kind = "hints";
+            o.why = "labs/" + id + "/hints is stale: " + stale;
             outcomes.push_back(std::move(o));
         }
         // The two figures that show the grade separates the two groups.
@@ -331,6 +438,84 @@ int runCorpus(const CorpusArgs& args) {
     std::printf("corpus: %s\n", fs::absolute(out / "corpus.json").string().c_str());
     if (!readable) return 2;
     return all_ok ? 0 : 1;
+}
+
+std::vector<std::string> writeHints(const std::string& labs_root, const std::string& corpus_root,
+                                    const std::string& reference_root, const std::vector<std::string>& labs,
+                                    const std::string& backend, const std::string& stored_root) {
+    std::vector<std::string> errors;
+    std::vector<std::string> ids = labs;
+    if (ids.empty()) ids = listLabIds(labs_root);
+    std::error_code ec;
+    const fs::path scratch = fs::temp_directory_path() / ("shaderlab_hints_" + std::to_string(::getpid()));
+    for (const std::string& id : ids) {
+        const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / id).string());
+        if (!parsed.ok) {
+            errors.insert(errors.end(), parsed.errors.begin(), parsed.errors.end());
+            continue;
+        }
+        const fs::path hints_dir =
+            (stored_root.empty() ? fs::path(parsed.spec.lab_dir) : fs::path(stored_root) / id) / "hints";
+        const fs::path cases_file = fs::path(corpus_root) / id / "cases.json";
+        std::vector<Case> cases;
+        if (!fs::exists(cases_file, ec)) {
+            fs::remove_all(hints_dir, ec);  // a lab without a corpus has no hints
+            continue;
+        }
+        if (!loadCases(cases_file, parsed.spec, &cases, &errors)) continue;
+        GradeOptions options;
+        parseBackend(backend, &options.backend);
+        options.labs_root = labs_root;
+        options.labs = {id};
+        options.goldens_root = stored_root;
+        options.hints = false;
+        // Every mistake twice: a picture that differs between the two renders (a mistake that
+        // reads memory nothing wrote) could not recognise anyone, nor be checked for staleness.
+        std::vector<MistakeRun> runs[2];
+        for (const Case& c : cases) {
+            if (c.kind != "mistake") continue;
+            const fs::path submission = scratch / id / "submissions" / c.name;
+            std::string error;
+            if (!materialise(parsed.spec, fs::path(reference_root) / id, fs::path(corpus_root) / id / c.name,
+                             c, submission, &error)) {
+                errors.push_back(error);
+                continue;
+            }
+            for (int k = 0; k < 2; ++k) {
+                options.out_dir = (scratch / id / ("reports" + std::to_string(k)) / c.name).string();
+                fs::create_directories(options.out_dir, ec);
+                runs[k].push_back({&c, gradeSubmission(submission.string(), options), options.out_dir});
+            }
+        }
+        // One picture that differs makes all of that mistake's suspect: it reads undefined memory,
+        // which may happen to hold the same garbage twice in a row and other garbage tomorrow.
+        std::vector<std::string> unstable;
+        {
+            std::vector<std::string> ignored;
+            const LabHints first = collectHints(runs[0], {}, &ignored),
+                           second = collectHints(runs[1], {}, &ignored);
+            std::set<std::string> unstable_mistakes;
+            for (const MistakeHint& a : first.hints) {
+                bool same = false;
+                for (const MistakeHint& b : second.hints)
+                    same = same || (b.file == a.file && b.picture.pixels == a.picture.pixels);
+                if (!same) unstable_mistakes.insert(a.mistake);
+            }
+            for (const MistakeHint& a : first.hints)
+                if (unstable_mistakes.count(a.mistake)) unstable.push_back(a.file);
+        }
+        std::size_t dropped = 0;
+        const LabHints hints = collectHints(runs[0], unstable, &errors, &dropped);
+        std::string error;
+        if (!writeLabHints(hints_dir.string(), hints, &error)) errors.push_back(error);
+        std::printf(
+            "%s: %zu known-mistake pictures of %zu mistakes (left out: %zu drawn alike by two mistakes, %zu "
+            "not "
+            "drawn the same way twice)\n",
+            id.c_str(), hints.hints.size(), runs[0].size(), dropped, unstable.size());
+    }
+    fs::remove_all(scratch, ec);
+    return errors;
 }
 
 }  // namespace shaderlab::cli

@@ -120,9 +120,14 @@ bool selectLabs(const CommonOptions& common, const std::vector<std::string>& wan
 bool writeReports(const grader::Report& report, const fs::path& out,
                   const std::vector<std::string>& formats) {
     bool ok = writeText(out / "report.json", grader::reportToJson(report));
-    ok = writeText(out / "report.html", grader::reportToHtml(report)) && ok;
+    // report.html embeds its pictures (up to 20 MB) so that it opens anywhere on its own;
+    // results.json carries the failing ones (up to 2 MB) in its html output.
+    ok = writeText(out / "report.html", grader::reportToHtml(report, {out.string(), 20u << 20})) && ok;
     for (const std::string& f : formats) {
-        if (f == "gradescope") ok = writeText(out / "results.json", grader::reportToGradescope(report)) && ok;
+        if (f == "gradescope")
+            ok = writeText(out / "results.json",
+                           grader::reportToGradescope(report, {out.string(), 2u << 20})) &&
+                 ok;
         if (f == "junit") ok = writeText(out / "report.junit.xml", grader::reportToJunit(report)) && ok;
     }
     return ok;
@@ -280,11 +285,20 @@ int runGoldens(const GoldensArgs& args) {
                                     : args.reference_root;
     Backend backend{};
     parseBackend(args.common.backend, &backend);
-    const std::vector<std::string> errors =
+    std::vector<std::string> errors =
         writeGoldens(reference_root, labs_root, args.common.labs, backend, args.golden_root);
-    for (const std::string& e : errors) std::cerr << "shaderlab: " << e << "\n";
     const std::string where = args.golden_root.empty() ? labs_root : args.golden_root;
     if (errors.empty()) std::printf("goldens written under %s/*/golden/\n", where.c_str());
+    // The hints are graded against the goldens just written, so they come second.
+    if (errors.empty() && !args.no_hints) {
+        const std::string corpus = args.corpus_root.empty()
+                                       ? (fs::path(labs_root).parent_path() / "tests" / "corpus").string()
+                                       : args.corpus_root;
+        errors = writeHints(labs_root, corpus, reference_root, args.common.labs, args.common.backend,
+                            args.golden_root);
+        if (errors.empty()) std::printf("known-mistake hints written under %s/*/hints/\n", where.c_str());
+    }
+    for (const std::string& e : errors) std::cerr << "shaderlab: " << e << "\n";
     return errors.empty() ? 0 : 2;
 }
 

@@ -70,8 +70,17 @@ struct GoldensArgs {
     CommonOptions common;
     std::string reference_root;  // empty: <labs>/../reference_solutions
     std::string golden_root;     // empty: into each lab's folder; else <golden_root>/<lab>/golden/
+    std::string corpus_root;     // empty: tests/corpus beside the labs folder
+    bool no_hints = false;       // skip rendering the corpus mistakes into <lab>/hints/
 };
 int runGoldens(const GoldensArgs& args);
+
+// For `goldens`: grades every mistake of each lab's corpus against the goldens under
+// `stored_root` (empty: the labs' own) and writes the lab's known-mistake hints
+// (shaderlab/mistake_hints.h) beside them. Returns error messages.
+std::vector<std::string> writeHints(const std::string& labs_root, const std::string& corpus_root,
+                                    const std::string& reference_root, const std::vector<std::string>& labs,
+                                    const std::string& backend, const std::string& stored_root);
 
 struct CorpusArgs {
     CommonOptions common;

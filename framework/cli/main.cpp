@@ -78,10 +78,16 @@ int main(int argc, char** argv) {
 
     GoldensArgs goldens;
     CLI::App* goldens_cmd =
-        app.add_subcommand("goldens", "render the reference solutions into labs/*/golden/");
+        app.add_subcommand("goldens",
+                           "render the reference solutions into labs/*/golden/ and the corpus "
+                           "mistakes into labs/*/hints/");
     goldens_cmd->add_option("--reference", goldens.reference_root, "reference solutions folder");
     goldens_cmd->add_option("--into", goldens.golden_root,
                             "write to DIR/<lab>/golden/ instead of the labs (to compare)");
+    goldens_cmd->add_option("--corpus", goldens.corpus_root,
+                            "folder of <lab>/cases.json whose mistakes become hints (default: tests/corpus)");
+    goldens_cmd->add_flag("--no-hints", goldens.no_hints,
+                          "only the goldens: do not render the corpus mistakes into labs/*/hints/");
     add_common(goldens_cmd, &goldens.common);
 
     CorpusArgs corpus;

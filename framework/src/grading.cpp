@@ -9,9 +9,11 @@
 #include <set>
 
 #include "grader/heatmap.h"
+#include "grader/report_images.h"
 #include "grader/scoring.h"
 #include "shaderlab/lab_catalog.h"
 #include "shaderlab/lab_spec.h"
+#include "shaderlab/mistake_hints.h"
 
 namespace fs = std::filesystem;
 
@@ -114,7 +116,7 @@ grader::Image coverageImage(const std::vector<std::uint8_t>& coverage, int w, in
     return img;
 }
 
-ReferenceImages loadGoldens(const LabSpec& spec) {
+ReferenceImages loadGoldens(const LabSpec& spec, const std::string& lab_dir) {
     ReferenceImages ref;
     ref.source = "goldens";
     const std::vector<GradedImage> graded = gradedImages(spec);
@@ -127,9 +129,8 @@ ReferenceImages loadGoldens(const LabSpec& spec) {
             img.attachment = graded[i].attachment;
             img.graded = true;
             const std::string color_path =
-                goldenPath(spec.lab_dir, scene.name, graded[i].id, final_image, false, graded[i].hdr);
-            const std::string cov_path =
-                goldenPath(spec.lab_dir, scene.name, graded[i].id, final_image, true);
+                goldenPath(lab_dir, scene.name, graded[i].id, final_image, false, graded[i].hdr);
+            const std::string cov_path = goldenPath(lab_dir, scene.name, graded[i].id, final_image, true);
             grader::Image cov;
             std::string err;
             const bool color_ok = graded[i].hdr ? grader::readHdr(color_path, &img.color, &err)
@@ -249,9 +250,12 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         return finish();
     }
 
+    // Goldens and hints live in the lab's folder, or under goldens_root when it is given.
+    const std::string stored_dir =
+        options.goldens_root.empty() ? spec.lab_dir : (fs::path(options.goldens_root) / id).string();
     const ReferenceImages ref = hasReference(options.reference_root, id)
                                     ? renderReference(spec, options.reference_root, options)
-                                    : loadGoldens(spec);
+                                    : loadGoldens(spec, stored_dir);
     lab.reference_source = ref.source;
     if (!ref.ok) {
         lab.status = "crashed";
@@ -262,6 +266,9 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     const std::vector<GradedImage> graded = gradedImages(spec);
     const fs::path out_dir = options.out_dir;
     std::vector<std::string> write_errors;
+    LabHints hints;
+    std::string hints_error;  // the lab's fault: said in the lab's message, and grading goes on
+    if (options.hints) loadLabHints((fs::path(stored_dir) / "hints").string(), &hints, &hints_error);
 
     // The reference must match the lab as it is now; a mismatch (goldens older than lab.json)
     // is the lab's fault, never the student's.
@@ -284,6 +291,8 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
 
     // (scene, pass) -> every graded image of that pass passed
     std::map<std::pair<std::string, std::string>, bool> checks;
+    // scene -> its first wrong image, for the known-mistake hints once every scene is judged
+    std::map<std::string, FailingPicture> failing_pictures;
     const std::vector<std::set<std::size_t>> ancestors = passAncestors(spec);
     bool all_passed = true;
     for (const SceneRender& scene : student.render.scenes) {
@@ -292,6 +301,8 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         rs.render_ms = scene.render_ms;
         const auto ref_it = ref.scenes.find(scene.scene);
         std::vector<FailingImage> failing;
+        // What each image looked like, for the known-mistake comparison once the scene is judged.
+        std::vector<FailingPicture> pictures;
         for (std::size_t i = 0; i < scene.passes.size(); ++i) {
             const PassImage& mine = scene.passes[i];
             const PassImage& theirs = ref_it->second[i];
@@ -321,6 +332,16 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             rp.passed = v.passed;
             rp.reasons = v.reasons;
             rp.metrics = reportMetrics(v.covered, v);
+            rp.thresholds.known = true;
+            rp.thresholds.psnr_min_db = thresholds.psnr_min_db;
+            rp.thresholds.ssim_min = thresholds.ssim_min;
+            rp.thresholds.flip_mean_max = thresholds.flip_mean_max;
+            rp.thresholds.mismatch_max = thresholds.mismatch_max;
+            rp.thresholds.pixel_tolerance = thresholds.pixel_tolerance;
+            rp.width = mine.color.width;
+            rp.height = mine.color.height;
+            rp.worst_region = v.worst.tile;
+            rp.non_finite_box = v.non_finite_box;
             const fs::path base = fs::path(id) / scene.scene;
             const std::string suffix = final_image ? "" : "." + g.id;
             // The pictures show what was compared: HDR images over the same scale.
@@ -331,8 +352,10 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                         if (img->channels < 4 || k % 4 != 3)  // colour only: alpha stays as drawn
                             img->pixels[k] = static_cast<float>(img->pixels[k] / v.hdr_scale);
             }
+            // NaN and Inf show in magenta (a PNG would hold them as black or white).
+            const grader::Image picture = grader::markNonFinite(shown_mine);
             rp.student_image =
-                writeImage(shown_mine, out_dir, base / ("student" + suffix + ".png"), &write_errors);
+                writeImage(picture, out_dir, base / ("student" + suffix + ".png"), &write_errors);
             rp.reference_image =
                 writeImage(shown_theirs, out_dir, base / ("reference" + suffix + ".png"), &write_errors);
             grader::HeatmapConfig hc;
@@ -341,6 +364,34 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                 grader::diffHeatmap(v.flip_map, mine.color.width, mine.color.height, hc);
             if (!heat.empty())
                 rp.diff_image = writeImage(heat, out_dir, base / ("diff" + suffix + ".png"), &write_errors);
+            const grader::Image signed_picture = grader::signedDifference(shown_theirs, shown_mine);
+            if (!signed_picture.empty())
+                rp.signed_image =
+                    writeImage(signed_picture, out_dir, base / ("signed" + suffix + ".png"), &write_errors);
+            // A failing image gets a close-up: 32x32 pixels around the worst region of the
+            // comparison (its 16x16 window and some context), or around the first NaN or Inf pixel
+            // when nothing else differs.
+            if (!v.passed) {
+                grader::PixelBox region;
+                if (!v.worst.tile.empty())
+                    region = grader::windowAround(v.worst.centre.x, v.worst.centre.y, 32, mine.color.width,
+                                                  mine.color.height);
+                else if (!v.non_finite_first.empty())
+                    region = grader::windowAround(v.non_finite_first[0].x, v.non_finite_first[0].y, 32,
+                                                  mine.color.width, mine.color.height);
+                if (!region.empty()) {
+                    const int factor = std::max(1, 128 / std::max(region.width(), region.height()));
+                    const grader::Image strip =
+                        grader::sideBySide({grader::cropZoom(picture, region, factor),
+                                            grader::cropZoom(shown_theirs, region, factor),
+                                            grader::cropZoom(heat, region, factor)});
+                    rp.zoom_region = region;
+                    if (!strip.empty())
+                        rp.zoom_image =
+                            writeImage(strip, out_dir, base / ("zoom" + suffix + ".png"), &write_errors);
+                }
+            }
+            if (!hints.hints.empty()) pictures.push_back({g.id, picture, shown_theirs, v.graded});
             auto& check = checks.emplace(std::make_pair(scene.scene, g.pass->name), true).first->second;
             check = check && v.passed;
             if (!v.passed) failing.push_back({i, v.reasons});
@@ -352,6 +403,8 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                 rs.student_image = rp.student_image;
                 rs.reference_image = rp.reference_image;
                 rs.diff_image = rp.diff_image;
+                rs.signed_image = rp.signed_image;
+                rs.zoom_image = rp.zoom_image;
             }
             rs.passes.push_back(std::move(rp));
         }
@@ -381,8 +434,19 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                 rs.message += (rs.message.empty() ? "'" : "; '") + graded[r->image].id +
                               "': " + joinReasons(r->reasons);
         }
+        if (!roots.empty() && !hints.hints.empty())
+            failing_pictures[scene.scene] = std::move(pictures[roots.front()->image]);
         all_passed = all_passed && rs.status == "passed";
         lab.scenes.push_back(std::move(rs));
+    }
+
+    // A known mistake that draws every scene it fails the way the student did explains them.
+    if (!failing_pictures.empty()) {
+        const std::map<std::string, grader::ReportHint> explained = explainFailures(hints, failing_pictures);
+        for (grader::ReportScene& rs : lab.scenes) {
+            const auto it = explained.find(rs.name);
+            if (it != explained.end()) rs.hint = it->second;
+        }
     }
 
     // Goals: met when every check of theirs passed. A goal's points are shared among its
@@ -392,6 +456,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         rg.id = goal.id;
         rg.title = goal.title;
         rg.points = goal.points;
+        rg.scenes = goal.scenes;
         rg.met = true;
         for (const std::string& scene : goal.scenes) {
             for (const std::string& pass : goal.passes) {
@@ -414,6 +479,9 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     }
     lab.status = all_passed ? "passed" : "failed";
     if (!write_errors.empty()) lab.message = "could not write images: " + joinReasons(write_errors);
+    if (!hints_error.empty())
+        lab.message +=
+            (lab.message.empty() ? "" : "; ") + std::string("known-mistake hints not used: ") + hints_error;
     return finish();
 }
 

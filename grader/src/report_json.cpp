@@ -1,9 +1,11 @@
 // report.json and Gradescope results.json; see report.h and docs/report-format.md.
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
 
 #include "grader/report.h"
+#include "report_markup.h"
 
 namespace grader {
 
@@ -63,8 +65,54 @@ ReportMetrics metricsFrom(const json& j) {
     return m;
 }
 
-json images(const std::string& student, const std::string& reference, const std::string& diff) {
-    return {{"student", student}, {"reference", reference}, {"diff", diff}};
+// The three pictures every graded image has, then the optional ones when they exist.
+json images(const std::string& student, const std::string& reference, const std::string& diff,
+            const std::string& signed_image, const std::string& zoom) {
+    json j = {{"student", student}, {"reference", reference}, {"diff", diff}};
+    if (!signed_image.empty()) j["signed_difference"] = signed_image;
+    if (!zoom.empty()) j["zoom"] = zoom;
+    return j;
+}
+
+json thresholds(const ReportThresholds& t) {
+    if (!t.known) return nullptr;
+    return {{"psnr_min_db", number(t.psnr_min_db)},
+            {"ssim_min", number(t.ssim_min)},
+            {"flip_mean_max", number(t.flip_mean_max)},
+            {"mismatch_max", number(t.mismatch_max)},
+            {"pixel_tolerance", number(t.pixel_tolerance)}};
+}
+
+ReportThresholds thresholdsFrom(const json& j) {
+    ReportThresholds t;
+    if (!j.is_object()) return t;
+    t.known = true;
+    t.psnr_min_db = fromNumber(j.value("psnr_min_db", json()), 0.0);
+    t.ssim_min = fromNumber(j.value("ssim_min", json()), 0.0);
+    t.flip_mean_max = fromNumber(j.value("flip_mean_max", json()), 0.0);
+    t.mismatch_max = fromNumber(j.value("mismatch_max", json()), 0.0);
+    t.pixel_tolerance = fromNumber(j.value("pixel_tolerance", json()), 0.0);
+    return t;
+}
+
+json hint(const ReportHint& h) {
+    if (h.mistake.empty()) return nullptr;
+    return {{"mistake", h.mistake},
+            {"about", h.about},
+            {"image", h.image},
+            {"psnr_db", number(h.psnr_db)},
+            {"identical", std::isinf(h.psnr_db) && h.psnr_db > 0}};
+}
+
+ReportHint hintFrom(const json& j) {
+    ReportHint h;
+    if (!j.is_object()) return h;
+    h.mistake = j.value("mistake", "");
+    h.about = j.value("about", "");
+    h.image = j.value("image", "");
+    h.psnr_db = fromNumber(j.value("psnr_db", json()),
+                           j.value("identical", false) ? std::numeric_limits<double>::infinity() : 0.0);
+    return h;
 }
 
 }  // namespace
@@ -98,7 +146,14 @@ std::string reportToJson(const Report& report) {
                                   {"passed", p.passed},
                                   {"reasons", p.reasons},
                                   {"metrics", metrics(p.metrics)},
-                                  {"images", images(p.student_image, p.reference_image, p.diff_image)}});
+                                  {"thresholds", thresholds(p.thresholds)},
+                                  {"width", p.width},
+                                  {"height", p.height},
+                                  {"worst_region", box(p.worst_region)},
+                                  {"non_finite_region", box(p.non_finite_box)},
+                                  {"zoom_region", box(p.zoom_region)},
+                                  {"images", images(p.student_image, p.reference_image, p.diff_image,
+                                                    p.signed_image, p.zoom_image)}});
             scenes.push_back({{"name", s.name},
                               {"status", s.status},
                               {"score", number(s.score)},
@@ -110,8 +165,10 @@ std::string reportToJson(const Report& report) {
                               {"frame_metrics", metrics(s.frame_metrics)},
                               {"worst_region", box(s.worst_region)},
                               {"non_finite_region", box(s.non_finite_box)},
-                              {"images", images(s.student_image, s.reference_image, s.diff_image)},
+                              {"images", images(s.student_image, s.reference_image, s.diff_image,
+                                                s.signed_image, s.zoom_image)},
                               {"passes", passes},
+                              {"hint", hint(s.hint)},
                               {"render_ms", number(s.render_ms)}});
         }
         json goals = json::array();
@@ -120,7 +177,8 @@ std::string reportToJson(const Report& report) {
                              {"title", g.title},
                              {"points", number(g.points)},
                              {"met", g.met},
-                             {"failing", g.failing}});
+                             {"failing", g.failing},
+                             {"scenes", g.scenes}});
         labs.push_back({{"id", lab.id},
                         {"title", lab.title},
                         {"folder", lab.folder},
@@ -189,6 +247,7 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
             goal.points = fromNumber(g.value("points", json()), 0.0);
             goal.met = g.value("met", false);
             goal.failing = g.value("failing", std::vector<std::string>{});
+            goal.scenes = g.value("scenes", std::vector<std::string>{});
             lab.goals.push_back(std::move(goal));
         }
         for (const json& s : l.value("scenes", json::array())) {
@@ -208,6 +267,9 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
             scene.student_image = im.value("student", "");
             scene.reference_image = im.value("reference", "");
             scene.diff_image = im.value("diff", "");
+            scene.signed_image = im.value("signed_difference", "");
+            scene.zoom_image = im.value("zoom", "");
+            scene.hint = hintFrom(s.value("hint", json()));
             scene.render_ms = fromNumber(s.value("render_ms", json()), 0.0);
             for (const json& p : s.value("passes", json::array())) {
                 ReportPass pass;
@@ -223,6 +285,14 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
                 pass.student_image = pim.value("student", "");
                 pass.reference_image = pim.value("reference", "");
                 pass.diff_image = pim.value("diff", "");
+                pass.signed_image = pim.value("signed_difference", "");
+                pass.zoom_image = pim.value("zoom", "");
+                pass.thresholds = thresholdsFrom(p.value("thresholds", json()));
+                pass.width = p.value("width", 0);
+                pass.height = p.value("height", 0);
+                pass.worst_region = boxFrom(p.value("worst_region", json()));
+                pass.non_finite_box = boxFrom(p.value("non_finite_region", json()));
+                pass.zoom_region = boxFrom(p.value("zoom_region", json()));
                 scene.passes.push_back(std::move(pass));
             }
             lab.scenes.push_back(std::move(scene));
@@ -233,9 +303,12 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
     return true;
 }
 
-// Gradescope autograder results.json: top-level score and output, one test per scene (or one
-// per lab when the lab never rendered), status "passed"/"failed", visible to the student.
-std::string reportToGradescope(const Report& report) {
+// Gradescope autograder results.json (https://gradescope-autograders.readthedocs.io/en/latest/specs/):
+// top-level score and output, one test per learning goal (or one per lab when the lab never
+// rendered), status "passed"/"failed", visible to the student. Goal outputs and the top-level
+// output are html ("output_format"), with the failing images embedded while the budget lasts.
+std::string reportToGradescope(const Report& report, const ImageEmbedding& images) {
+    detail::Budget budget(images);
     json tests = json::array();
     for (const ReportLab& lab : report.labs) {
         if (lab.scenes.empty()) {
@@ -246,31 +319,33 @@ std::string reportToGradescope(const Report& report) {
                              {"max_score", number(lab.max_score)},
                              {"status", "failed"},
                              {"output", output},
+                             {"output_format", "text"},
                              {"visibility", "visible"}});
             continue;
         }
         // One test per learning goal: what the student learned is what earns points.
         for (const ReportGoal& g : lab.goals) {
-            std::string output = g.met ? "met: every scene that tests it matches the reference" : "not met;";
-            for (const std::string& check : g.failing) {
-                const std::string scene = check.substr(0, check.find('/'));
-                output += "\n" + check;
-                for (const ReportScene& s : lab.scenes)
-                    if (s.name == scene && !s.message.empty()) output += ": " + s.message;
-            }
             tests.push_back({{"name", lab.id + " / " + g.title},
                              {"score", number(g.met ? g.points : 0.0)},
                              {"max_score", number(g.points)},
                              {"status", g.met ? "passed" : "failed"},
-                             {"output", output},
+                             {"output", detail::gradescopeGoalHtml(lab, g, budget)},
+                             {"output_format", "html"},
                              {"visibility", "visible"}});
         }
     }
-    char summary[128];
-    std::snprintf(summary, sizeof summary, "shaderlab %s: %.2f / %.2f points", report.tool_version.c_str(),
-                  report.score, report.max_score);
-    json root = {
-        {"score", number(report.score)}, {"output", summary}, {"visibility", "visible"}, {"tests", tests}};
+    char summary[160];
+    std::snprintf(summary, sizeof summary, "<p>shaderlab %s: <b>%.2f / %.2f</b> points.</p>\n",
+                  report.tool_version.c_str(), report.score, report.max_score);
+    std::string output = summary + detail::gradescopeSummaryHtml(report);
+    if (budget.left_out() > 0)
+        output += "<p>" + std::to_string(budget.left_out()) +
+                  " pictures were left out to keep this page small; report.html has all of them.</p>\n";
+    json root = {{"score", number(report.score)},
+                 {"output", output},
+                 {"output_format", "html"},
+                 {"visibility", "visible"},
+                 {"tests", tests}};
     return root.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 

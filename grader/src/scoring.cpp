@@ -17,19 +17,9 @@ std::string fmt(const char* format, double a, double b) {
 
 // "<what> <value><unit> is <relation> <limit><unit>", with as many decimals (from `digits`, at
 // most 6) as it takes for the two numbers to read differently: never "0.950 is below 0.950".
-std::pair<std::string, std::string> distinct(double value, double limit, int digits) {
-    char a[64], b[64];
-    for (;; ++digits) {
-        std::snprintf(a, sizeof a, "%.*f", digits, value);
-        std::snprintf(b, sizeof b, "%.*f", digits, limit);
-        if (std::string(a) != b || digits >= 6) break;
-    }
-    return {a, b};
-}
-
 std::string compared(const char* what, double value, const char* relation, double limit, int digits,
                      const char* unit = "") {
-    const auto [a, b] = distinct(value, limit, digits);
+    const auto [a, b] = formatDistinct(value, limit, digits);
     return std::string(what) + " " + a + unit + " is " + relation + " " + b + unit;
 }
 
@@ -67,6 +57,16 @@ MetricSet measure(const Image& ref, const Image& test, const Mask* mask, float t
 }
 
 }  // namespace
+
+std::pair<std::string, std::string> formatDistinct(double value, double limit, int digits) {
+    char a[64], b[64];
+    for (;; ++digits) {
+        std::snprintf(a, sizeof a, "%.*f", digits, value);
+        std::snprintf(b, sizeof b, "%.*f", digits, limit);
+        if (std::string(a) != b || digits >= 6) break;
+    }
+    return {a, b};
+}
 
 Image quantise8(const Image& image) {
     Image out = image;
@@ -164,6 +164,7 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
                   : measure(ref8, test8, nullptr, thresholds.pixel_tolerance, nullptr, nullptr);
     v.worst = cmp.worst;
     v.mismatches = std::move(cmp.mismatches);
+    v.graded = covered;
     v.flip_map = std::move(flip.error_map);
 
     v.checks_met = 0;
@@ -191,7 +192,7 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
             where = buf;
         }
         const auto [got, allowed] =
-            distinct(100.0 * v.covered.mismatch_fraction, 100.0 * thresholds.mismatch_max, 1);
+            formatDistinct(100.0 * v.covered.mismatch_fraction, 100.0 * thresholds.mismatch_max, 1);
         v.reasons.push_back(got + " % of covered pixels differ, more than " + allowed + " %" + where);
     }
     if (nf.any()) {

@@ -96,5 +96,17 @@ TEST(Scoring, ReasonsTellTheNumberFromTheThreshold) {
     EXPECT_TRUE(found);
 }
 
+TEST(Scoring, FormatDistinctAddsDecimalsOnlyWhenNeeded) {
+    EXPECT_EQ(formatDistinct(27.34, 30.0, 1), std::make_pair(std::string("27.3"), std::string("30.0")));
+    EXPECT_EQ(formatDistinct(0.9499, 0.95, 3), std::make_pair(std::string("0.9499"), std::string("0.9500")));
+    EXPECT_EQ(formatDistinct(29.96, 30.0, 1), std::make_pair(std::string("29.96"), std::string("30.00")));
+    // Equal numbers stay equal (at most 6 decimals).
+    EXPECT_EQ(formatDistinct(0.95, 0.95, 3),
+              std::make_pair(std::string("0.950000"), std::string("0.950000")));
+    // The graded pixels are the verdict's mask.
+    const Image a = test::patternImage(16, 16);
+    EXPECT_EQ(judgeImage(a, {}, a, {}, Thresholds{}).graded.count(), 256u);
+}
+
 }  // namespace
 }  // namespace grader

@@ -1,8 +1,9 @@
 // Grades a submission: for each lab, renders the student's shaders in a child process, gets the
 // reference images (by rendering the reference solution when it is present, else from the
 // lab's stored goldens), judges every graded pass with the lab's thresholds and writes the
-// images a person needs to see why (student, reference, diff heat map). Returns the report as
-// data; writing report files is the caller's (see grader/report.h).
+// images a person needs to see why (student, reference, signed difference, FLIP heat map, a
+// close-up of the worst region) and looks for a known mistake behind each failing scene. Returns
+// the report as data; writing report files is the caller's (see grader/report.h).
 #pragma once
 
 #include <functional>
@@ -25,6 +26,9 @@ struct GradeOptions {
     // Told, as the student's render goes, what it is doing (RenderOptions::progress events,
     // with the lab id). May be empty.
     std::function<void(const std::string& lab, const std::string& event)> progress;
+    // Where <lab>/golden/ and <lab>/hints/ are read from; empty: each lab's own folder.
+    std::string goldens_root;
+    bool hints = true;  // look for a known mistake (mistake_hints.h) behind every failing scene
 };
 
 // Called after each lab is graded with the report so far (its last lab is the new one), so the

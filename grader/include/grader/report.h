@@ -3,6 +3,7 @@
 // grade. Image paths in the report are relative to the report's folder.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,17 @@ struct ReportMetrics {
     std::size_t pixel_count = 0;
 };
 
+// The thresholds an image was judged with (the lab's, the pass's, then the scene's). `known` is
+// false in a report written before they were recorded.
+struct ReportThresholds {
+    bool known = false;
+    double psnr_min_db = 0.0;
+    double ssim_min = 0.0;
+    double flip_mean_max = 0.0;
+    double mismatch_max = 0.0;
+    double pixel_tolerance = 0.0;  // what a mismatching pixel is off by, at least (every channel)
+};
+
 // One graded image of a scene: a pass's attachment (most passes have one, named by the pass).
 struct ReportPass {
     std::string name;        // "shade", or "gbuffer.normal" for one attachment of several
@@ -55,6 +67,23 @@ struct ReportPass {
     ReportMetrics metrics;
     std::vector<std::string> reasons;
     std::string student_image, reference_image, diff_image;
+    // Optional (empty or 0 when a report predates them):
+    ReportThresholds thresholds;
+    int width = 0, height = 0;  // of the image, in pixels
+    PixelBox worst_region;      // the worst 16x16 window of the shift-tolerant comparison
+    PixelBox non_finite_box;    // around the NaN and Inf pixels
+    PixelBox zoom_region;       // what zoom_image enlarges (a failing image only)
+    std::string signed_image;   // too bright / too dark
+    std::string zoom_image;     // zoom_region of student, reference and FLIP map, side by side
+};
+
+// A failing scene whose picture is close to a known mistake's (tests/corpus/<lab>, stored as
+// labs/<lab>/hints by `shaderlab goldens`); empty `mistake` when none is.
+struct ReportHint {
+    std::string mistake;   // the corpus case
+    std::string about;     // what the mistake is, in one sentence
+    std::string image;     // the graded image compared (a ReportPass name)
+    double psnr_db = 0.0;  // of the student's picture against the mistake's (+infinity: identical)
 };
 
 struct ReportScene {
@@ -68,7 +97,9 @@ struct ReportScene {
     PixelBox worst_region;
     PixelBox non_finite_box;
     std::string student_image, reference_image, diff_image;
-    std::vector<ReportPass> passes;  // every graded image, in order (the last is the final image)
+    std::string signed_image, zoom_image;  // of the final image; optional
+    std::vector<ReportPass> passes;        // every graded image, in order (the last is the final image)
+    ReportHint hint;
     double render_ms = 0.0;
 };
 
@@ -77,6 +108,7 @@ struct ReportGoal {
     std::string id, title;
     double points = 0.0;  // what meeting it earns
     bool met = false;
+    std::vector<std::string> scenes;   // where it is seen (optional: older reports lack it)
     std::vector<std::string> failing;  // "<scene>/<pass>" checks that failed, in order
 };
 
@@ -111,12 +143,22 @@ struct Report {
 // `prefix` goes before the file name (e.g. "01-phong/"), `indent` before every line.
 std::string formatDiagnostic(const ReportDiagnostic& d, const std::string& prefix = "",
                              const std::string& indent = "");
+// Where the writers that show pictures find them. With `image_root` (the folder the report's
+// image paths are relative to) the images are embedded as data: URIs, as long as all of them
+// together stay within `max_embedded_bytes` (base64 counted); otherwise they are linked by their
+// relative paths. A missing file is linked too.
+struct ImageEmbedding {
+    std::string image_root;
+    std::size_t max_embedded_bytes = 20u << 20;
+};
 
 // Each returns the text; the caller writes files.
 std::string reportToJson(const Report& report);
 bool reportFromJson(const std::string& text, Report* out, std::string* error);
-std::string reportToGradescope(const Report& report);
+// One test per learning goal, with its failing images when `images` allows (html output).
+std::string reportToGradescope(const Report& report, const ImageEmbedding& images = {"", 2u << 20});
 std::string reportToJunit(const Report& report);
-std::string reportToHtml(const Report& report);
+// A page a student reads on a laptop or a phone: summary, goals and points, every scene.
+std::string reportToHtml(const Report& report, const ImageEmbedding& images = {});
 
 }  // namespace grader

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "grader/compare.h"
@@ -61,7 +62,13 @@ struct ImageVerdict {
     // For the diff picture: FLIP error per pixel (whole frame) and the mismatching pixels.
     std::vector<float> flip_map;
     Mask mismatches;
+    Mask graded;  // the pixels the verdict counts (covered, or the whole frame)
 };
+
+// `value` and `limit` printed with `digits` decimals, or with more (at most 6) until the two read
+// differently, so that a failing value never prints equal to its threshold ("0.950 is below
+// 0.950"). Equal numbers stay equal.
+std::pair<std::string, std::string> formatDistinct(double value, double limit, int digits);
 
 // Rounds every channel to the nearest of 256 levels in [0, 1] (NaN becomes 0), as writePng.
 Image quantise8(const Image& image);
