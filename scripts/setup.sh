@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
   libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev libstb-dev libcli11-dev
-  libgtest-dev libgmock-dev libbenchmark-dev python3-glad clang-format libvalijson-dev
+  libgtest-dev libgmock-dev libbenchmark-dev python3-glad clang-format libvalijson-dev libpng-dev
   chromium tidy  # tests/report_page_test.cpp renders and validates report.html (skipped without them)
 )
 missing=()

@@ -633,6 +633,27 @@ TEST_F(LabFeatures, UniformTheShadersNeverMentionGetsAWarningWithASuggestion) {
     EXPECT_TRUE(warned) << diagnostics(r);
 }
 
+// A scene's uniform goes to every pass: a pass whose program does not use it is not warned
+// about, as long as some program of the lab mentions it; one that no program mentions is.
+TEST_F(LabFeatures, SceneUniformsWarnOnlyWhenNoShaderMentionsThem) {
+    write("gain.frag", fragment("uniform float u_gain;", "o_color = vec4(u_gain);"));
+    write("copy.frag", fragment("uniform sampler2D u_in;", "o_color = texture(u_in, v_uv);"));
+    const auto r = render(R"("resolution": [2, 2], "passes": [
+        {"name": "a", "program": {"vertex": "fullscreen.vert", "fragment": "gain.frag"}, "draw": "fullscreen"},
+        {"name": "b", "program": {"vertex": "fullscreen.vert", "fragment": "copy.frag"}, "draw": "fullscreen",
+         "inputs": {"u_in": "a"}}],
+        "scenes": [{"name": "s", "uniforms": {"u_gain": 0.5, "u_gian": 1}}])");
+    ASSERT_EQ(r.status, RenderStatus::Ok) << diagnostics(r);
+    int about_gain = 0, about_gian = 0;
+    for (const shaderlab::Diagnostic& d : r.diagnostics) {
+        about_gain += d.message.find("sets u_gain ") != std::string::npos;
+        about_gian += d.message.find("sets u_gian ") != std::string::npos;
+    }
+    EXPECT_EQ(about_gain, 0) << diagnostics(r);
+    EXPECT_EQ(about_gian, 1) << diagnostics(r);
+    EXPECT_FLOAT_EQ(image(r, "b").at(0, 0, 0), 0.5f);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Shader files
 

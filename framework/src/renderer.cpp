@@ -503,6 +503,7 @@ class LabRunner {
     GLuint empty_vao_ = 0;
     std::set<std::string> warned_;
     std::vector<std::pair<GLuint, GLenum>> bound_units_;  // (unit, texture target) of the last pass
+    std::string all_program_text_;                        // every program's prepared sources
 };
 
 // Student files come from the submission, every other program file from the lab folder (or the
@@ -564,6 +565,7 @@ bool LabRunner::buildPrograms() {
         prog.build(StageSource{pass.program.vertex, sources_[pass.program.vertex], includes},
                    StageSource{pass.program.fragment, sources_[pass.program.fragment], includes},
                    target.attachments);
+        all_program_text_ += prog.preparedText(0) + prog.preparedText(1);
         // A file in two programs (03-cel-outline's outline.frag, with two vertex stages) would
         // report each of its problems twice.
         for (const Diagnostic& d : prog.diagnostics()) {
@@ -782,26 +784,32 @@ bool LabRunner::setLabUniforms(const PassSpec& pass, const ShaderProgram& prog, 
             if (spec_.passes[i].name == name) return &ctx.cameras[i].values;
         return nullptr;
     };
-    auto apply = [&](const UniformSetting& u) {
+    // A pass's value is for its own program: one that program never mentions is likely
+    // misspelt. A scene's value goes to every pass, so it is suspicious only when no program of
+    // the lab mentions it.
+    auto apply = [&](const UniformSetting& u, bool from_scene) {
         const UniformApplyResult r = applyUniform(prog, u, cameras);
         if (!r.error.empty()) return failAt(RenderStatus::LinkError, r.error);
-        if (!r.declared) {
-            const std::string text = prog.preparedText(0) + prog.preparedText(1);
-            if (!mentionsIdentifier(text, u.name))
-                warnOnce(pass.program.fragment, "lab.json sets " + u.name + " (" + u.path +
-                                                    "), but neither " + pass.program.vertex + " nor " +
-                                                    pass.program.fragment + " mentions it" +
-                                                    didYouMean(u.name, declaredUniformNames(text)));
-        }
+        if (r.declared) return true;
+        const std::string text = prog.preparedText(0) + prog.preparedText(1);
+        if (!from_scene && !mentionsIdentifier(text, u.name))
+            warnOnce(pass.program.fragment, "lab.json sets " + u.name + " (" + u.path + "), but neither " +
+                                                pass.program.vertex + " nor " + pass.program.fragment +
+                                                " mentions it" +
+                                                didYouMean(u.name, declaredUniformNames(text)));
+        if (from_scene && !mentionsIdentifier(all_program_text_, u.name))
+            warnOnce("lab.json", "lab.json sets " + u.name + " (" + u.path +
+                                     "), but no shader of the lab mentions it" +
+                                     didYouMean(u.name, declaredUniformNames(all_program_text_)));
         return true;
     };
     for (const UniformSetting& u : pass.uniforms) {
         const bool overridden = std::any_of(ctx.spec->uniforms.begin(), ctx.spec->uniforms.end(),
                                             [&](const UniformSetting& s) { return s.name == u.name; });
-        if (!overridden && !apply(u)) return false;
+        if (!overridden && !apply(u, false)) return false;
     }
     for (const UniformSetting& u : ctx.spec->uniforms)
-        if (!apply(u)) return false;
+        if (!apply(u, true)) return false;
     return true;
 }
 

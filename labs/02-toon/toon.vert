@@ -1,11 +1,6 @@
 #version 330 core
 // 02-toon, vertex stage of both passes (given; not part of your submission): world-space position
 // and normal for per-fragment lighting, exactly as in 01-phong.
-//
-// A scene's uniforms in lab.json reach both passes, and the framework warns about a value set
-// for a program that never mentions it; since this file belongs to both programs, naming them
-// here keeps those warnings for real misspellings. Pass "steps" reads u_levels and u_ambient;
-// pass "ramp" reads u_diffuse, u_specular, u_shininess and u_edge.
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

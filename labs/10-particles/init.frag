@@ -5,9 +5,6 @@
 // The random numbers come from two noise textures the framework generates (lab.json,
 // "generate": {"pattern": "noise", ...}): independent values in [0, 1) from the splitmix64 hash
 // of (seed, texel), the same on every machine, so the initial state is reproducible.
-// (lab.json's scenes also set u_gravity, u_attraction, u_restitution for step.frag and
-// u_point_size, u_intensity, u_slow_color, u_fast_color, u_max_speed for the draw pass; they are
-// named here only because the framework warns about a scene uniform a pass never mentions.)
 
 uniform sampler2D u_noise_position;  // seed 1
 uniform sampler2D u_noise_velocity;  // seed 2

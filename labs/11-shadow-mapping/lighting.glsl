@@ -2,9 +2,6 @@
 // file, and not the lesson: ambient light plus Lambert's diffuse term from every light, where the
 // first light's share is scaled by its visibility (1 lit, 0 in shadow, in between at a soft edge).
 // Only the first light has a shadow map; any other light shines everywhere.
-// (The scenes' u_offset_factor and u_offset_units are for the shadow pass's depth.frag; these
-// passes ignore them. They are named here because the framework applies scene uniforms to every
-// pass and warns about passes whose shaders never mention them.)
 
 uniform int u_light_count;
 uniform vec4 u_light_position[SL_MAX_LIGHTS];  // w = 1: point light; w = 0: direction toward the light
