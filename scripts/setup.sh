@@ -10,6 +10,7 @@ packages=(
   libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev libstb-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev python3-glad clang-format libvalijson-dev libpng-dev
   chromium tidy  # tests/report_page_test.cpp renders and validates report.html (skipped without them)
+  gnuplot-nox    # scripts/bench.sh draws the plots of docs/performance.md
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,6 +1,10 @@
 // Headless context backends: OSMesa (Mesa's off-screen library, llvmpipe) and EGL on the
 // surfaceless platform (EGL_MESA_platform_surfaceless; also the road to a GPU). Both create a
 // core-profile context of the newest version offered, then load GL through glad.
+//
+// Both libraries are opened with dlopen() when a context is first asked for, not linked: OSMesa
+// needs libLLVM, whose relocation alone made every `shaderlab compare` (which never draws) take
+// 20 ms to start. A missing library is an ordinary context error naming it.
 #include "shaderlab/gl_context.h"
 
 // glad's header must come before any other GL header (osmesa.h pulls in GL/gl.h).
@@ -11,14 +15,107 @@
 #include <GL/osmesa.h>
 // clang-format on
 
+#include <dlfcn.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <vector>
 
+#include "shaderlab/timings.h"
+
 namespace shaderlab {
 
 namespace {
+
+// Resolves `name` from `lib` into `*fn`; false (and `missing` names it) when absent.
+template <typename Fn>
+bool resolve(void* lib, const char* name, Fn* fn, std::string* missing) {
+    *fn = reinterpret_cast<Fn>(dlsym(lib, name));
+    if (!*fn && missing->empty()) *missing = name;
+    return *fn != nullptr;
+}
+
+// The OSMesa entry points this file uses, from libOSMesa opened on first use.
+struct OSMesaApi {
+    decltype(&::OSMesaCreateContextAttribs) CreateContextAttribs = nullptr;
+    decltype(&::OSMesaCreateContextExt) CreateContextExt = nullptr;
+    decltype(&::OSMesaMakeCurrent) MakeCurrent = nullptr;
+    decltype(&::OSMesaDestroyContext) DestroyContext = nullptr;
+    decltype(&::OSMesaGetProcAddress) GetProcAddress = nullptr;
+    std::string error;  // why the library is unusable; empty when it loaded
+
+    static const OSMesaApi& get() {
+        static const OSMesaApi api = load();
+        return api;
+    }
+
+  private:
+    static OSMesaApi load() {
+        OSMesaApi a;
+        void* lib = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
+        if (!lib) lib = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
+        if (!lib) {
+            const char* why = dlerror();
+            a.error = std::string("osmesa: cannot open libOSMesa.so.8 (") + (why ? why : "not found") +
+                      "); install libosmesa6";
+            return a;
+        }
+        std::string missing;
+        resolve(lib, "OSMesaCreateContextAttribs", &a.CreateContextAttribs, &missing);
+        resolve(lib, "OSMesaCreateContextExt", &a.CreateContextExt, &missing);
+        resolve(lib, "OSMesaMakeCurrent", &a.MakeCurrent, &missing);
+        resolve(lib, "OSMesaDestroyContext", &a.DestroyContext, &missing);
+        resolve(lib, "OSMesaGetProcAddress", &a.GetProcAddress, &missing);
+        if (!missing.empty()) a.error = "osmesa: libOSMesa.so.8 lacks " + missing;
+        return a;
+    }
+};
+
+// The EGL entry points this file uses, from libEGL opened on first use.
+struct EglApi {
+    decltype(&::eglQueryString) QueryString = nullptr;
+    decltype(&::eglGetProcAddress) GetProcAddress = nullptr;
+    decltype(&::eglInitialize) Initialize = nullptr;
+    decltype(&::eglTerminate) Terminate = nullptr;
+    decltype(&::eglBindAPI) BindAPI = nullptr;
+    decltype(&::eglChooseConfig) ChooseConfig = nullptr;
+    decltype(&::eglCreateContext) CreateContext = nullptr;
+    decltype(&::eglDestroyContext) DestroyContext = nullptr;
+    decltype(&::eglMakeCurrent) MakeCurrent = nullptr;
+    decltype(&::eglGetError) GetError = nullptr;
+    std::string error;
+
+    static const EglApi& get() {
+        static const EglApi api = load();
+        return api;
+    }
+
+  private:
+    static EglApi load() {
+        EglApi a;
+        void* lib = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
+        if (!lib) {
+            const char* why = dlerror();
+            a.error = std::string("egl: cannot open libEGL.so.1 (") + (why ? why : "not found") +
+                      "); install libegl1 and libegl-mesa0";
+            return a;
+        }
+        std::string missing;
+        resolve(lib, "eglQueryString", &a.QueryString, &missing);
+        resolve(lib, "eglGetProcAddress", &a.GetProcAddress, &missing);
+        resolve(lib, "eglInitialize", &a.Initialize, &missing);
+        resolve(lib, "eglTerminate", &a.Terminate, &missing);
+        resolve(lib, "eglBindAPI", &a.BindAPI, &missing);
+        resolve(lib, "eglChooseConfig", &a.ChooseConfig, &missing);
+        resolve(lib, "eglCreateContext", &a.CreateContext, &missing);
+        resolve(lib, "eglDestroyContext", &a.DestroyContext, &missing);
+        resolve(lib, "eglMakeCurrent", &a.MakeCurrent, &missing);
+        resolve(lib, "eglGetError", &a.GetError, &missing);
+        if (!missing.empty()) a.error = "egl: libEGL.so.1 lacks " + missing;
+        return a;
+    }
+};
 
 constexpr int kMinMajor = 3, kMinMinor = 3;
 
@@ -29,15 +126,19 @@ std::string versionString(int major, int minor) {
 class OSMesaContextImpl final : public GlContext {
   public:
     ~OSMesaContextImpl() override {
-        if (ctx_) OSMesaDestroyContext(ctx_);
+        if (ctx_) osmesa.DestroyContext(ctx_);
     }
     const char* backend() const override { return "osmesa"; }
     bool makeCurrent() override {
-        return OSMesaMakeCurrent(ctx_, pixel_, GL_UNSIGNED_BYTE, 1, 1) &&
-               gladLoadGL(reinterpret_cast<GLADloadfunc>(&OSMesaGetProcAddress));
+        return osmesa.MakeCurrent(ctx_, pixel_, GL_UNSIGNED_BYTE, 1, 1) &&
+               gladLoadGL(reinterpret_cast<GLADloadfunc>(osmesa.GetProcAddress));
     }
 
     bool create(std::string* error) {
+        if (!osmesa.error.empty()) {
+            *error = osmesa.error;
+            return false;
+        }
         // Ask for the highest core versions first: OSMesa returns a context of at least the
         // requested version, and fails when it cannot.
         const int wanted[][2] = {{4, 5}, {4, 3}, {4, 1}, {3, 3}};
@@ -55,33 +156,34 @@ class OSMesaContextImpl final : public GlContext {
                                    OSMESA_CONTEXT_MINOR_VERSION,
                                    v[1],
                                    0};
-            ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
+            ctx_ = osmesa.CreateContextAttribs(attribs, nullptr);
             if (ctx_) break;
         }
         if (!ctx_) {
             // Learn which version the library can give, to say so.
-            OSMesaContext legacy = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+            OSMesaContext legacy = osmesa.CreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
             std::string found = "none";
-            if (legacy && OSMesaMakeCurrent(legacy, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
+            if (legacy && osmesa.MakeCurrent(legacy, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
                 auto get_string =
-                    reinterpret_cast<const GLubyte* (*)(GLenum)>(OSMesaGetProcAddress("glGetString"));
+                    reinterpret_cast<const GLubyte* (*)(GLenum)>(osmesa.GetProcAddress("glGetString"));
                 if (get_string && get_string(GL_VERSION))
                     found = reinterpret_cast<const char*>(get_string(GL_VERSION));
             }
-            if (legacy) OSMesaDestroyContext(legacy);
+            if (legacy) osmesa.DestroyContext(legacy);
             *error = "osmesa: cannot create an OpenGL " + versionString(kMinMajor, kMinMinor) +
                      " core context; the library offers " + found;
             return false;
         }
         // The 1x1 buffer only satisfies MakeCurrent; every pass renders into an FBO.
-        if (!OSMesaMakeCurrent(ctx_, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
+        if (!osmesa.MakeCurrent(ctx_, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
             *error = "osmesa: OSMesaMakeCurrent failed";
             return false;
         }
-        return loadGl(reinterpret_cast<GetProcFn>(&OSMesaGetProcAddress), &info_, error);
+        return loadGl(reinterpret_cast<GetProcFn>(osmesa.GetProcAddress), &info_, error);
     }
 
   private:
+    const OSMesaApi& osmesa = OSMesaApi::get();
     OSMesaContext ctx_ = nullptr;
     unsigned char pixel_[4] = {};
 };
@@ -90,37 +192,41 @@ class EglContextImpl final : public GlContext {
   public:
     ~EglContextImpl() override {
         if (display_ != EGL_NO_DISPLAY) {
-            eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            if (ctx_ != EGL_NO_CONTEXT) eglDestroyContext(display_, ctx_);
-            eglTerminate(display_);
+            egl.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            if (ctx_ != EGL_NO_CONTEXT) egl.DestroyContext(display_, ctx_);
+            egl.Terminate(display_);
         }
     }
     const char* backend() const override { return "egl"; }
     bool makeCurrent() override {
-        return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_) &&
-               gladLoadGL(reinterpret_cast<GLADloadfunc>(&eglGetProcAddress));
+        return egl.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_) &&
+               gladLoadGL(reinterpret_cast<GLADloadfunc>(egl.GetProcAddress));
     }
 
     bool create(std::string* error) {
-        const char* client_ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+        if (!egl.error.empty()) {
+            *error = egl.error;
+            return false;
+        }
+        const char* client_ext = egl.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
         if (!client_ext || !std::strstr(client_ext, "EGL_MESA_platform_surfaceless")) {
             *error = "egl: the EGL library lacks EGL_MESA_platform_surfaceless (client extensions: " +
                      std::string(client_ext ? client_ext : "none") + ")";
             return false;
         }
         auto get_platform_display =
-            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(egl.GetProcAddress("eglGetPlatformDisplayEXT"));
         if (!get_platform_display) {
             *error = "egl: eglGetPlatformDisplayEXT not available";
             return false;
         }
         display_ = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         EGLint major = 0, minor = 0;
-        if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor)) {
-            *error = "egl: cannot initialise the surfaceless display (error 0x" + hex(eglGetError()) + ")";
+        if (display_ == EGL_NO_DISPLAY || !egl.Initialize(display_, &major, &minor)) {
+            *error = "egl: cannot initialise the surfaceless display (error 0x" + hex(egl.GetError()) + ")";
             return false;
         }
-        if (!eglBindAPI(EGL_OPENGL_API)) {
+        if (!egl.BindAPI(EGL_OPENGL_API)) {
             *error = "egl: the display does not offer desktop OpenGL";
             return false;
         }
@@ -130,7 +236,7 @@ class EglContextImpl final : public GlContext {
         EGLint count = 0;
         // Surfaceless contexts need no config; when the display lists one we use it anyway so
         // that drivers insisting on a config are served.
-        if (!eglChooseConfig(display_, config_attribs, &config, 1, &count) || count == 0) config = nullptr;
+        if (!egl.ChooseConfig(display_, config_attribs, &config, 1, &count) || count == 0) config = nullptr;
         const int wanted[][2] = {{4, 5}, {4, 3}, {4, 1}, {3, 3}};
         for (const auto& v : wanted) {
             const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
@@ -141,20 +247,20 @@ class EglContextImpl final : public GlContext {
                                           EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                           EGL_NONE};
             ctx_ =
-                eglCreateContext(display_, config ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctx_attribs);
+                egl.CreateContext(display_, config ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctx_attribs);
             if (ctx_ != EGL_NO_CONTEXT) break;
         }
         if (ctx_ == EGL_NO_CONTEXT) {
             *error = "egl: cannot create an OpenGL " + versionString(kMinMajor, kMinMinor) +
-                     " core context (EGL " + versionString(major, minor) + ", error 0x" + hex(eglGetError()) +
-                     ")";
+                     " core context (EGL " + versionString(major, minor) + ", error 0x" +
+                     hex(egl.GetError()) + ")";
             return false;
         }
-        if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_)) {
-            *error = "egl: eglMakeCurrent without a surface failed (error 0x" + hex(eglGetError()) + ")";
+        if (!egl.MakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_)) {
+            *error = "egl: eglMakeCurrent without a surface failed (error 0x" + hex(egl.GetError()) + ")";
             return false;
         }
-        return loadGl(reinterpret_cast<GetProcFn>(&eglGetProcAddress), &info_, error);
+        return loadGl(reinterpret_cast<GetProcFn>(egl.GetProcAddress), &info_, error);
     }
 
   private:
@@ -163,6 +269,7 @@ class EglContextImpl final : public GlContext {
         std::snprintf(buf, sizeof buf, "%04x", static_cast<unsigned>(v));
         return buf;
     }
+    const EglApi& egl = EglApi::get();
     EGLDisplay display_ = EGL_NO_DISPLAY;
     EGLContext ctx_ = EGL_NO_CONTEXT;
 };
@@ -212,6 +319,7 @@ ContextResult createHeadlessContext(Backend backend) {
     // would show once and never again. Feedback must not depend on what ran before; the cost
     // is recompiling (about 0.2 s per lab on llvmpipe). Read when the driver loads.
     setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+    ScopedTiming timing("context", "", backendName(backend));
     ContextResult result;
     if (backend == Backend::OSMesa) {
         auto ctx = std::make_unique<OSMesaContextImpl>();

@@ -14,6 +14,7 @@
 #include "shaderlab/lab_catalog.h"
 #include "shaderlab/lab_spec.h"
 #include "shaderlab/mistake_hints.h"
+#include "shaderlab/timings.h"
 
 namespace fs = std::filesystem;
 
@@ -119,6 +120,7 @@ grader::Image coverageImage(const std::vector<std::uint8_t>& coverage, int w, in
 ReferenceImages loadGoldens(const LabSpec& spec, const std::string& lab_dir) {
     ReferenceImages ref;
     ref.source = "goldens";
+    ScopedTiming timing("goldens", spec.id);
     const std::vector<GradedImage> graded = gradedImages(spec);
     for (const SceneSpec& scene : spec.scenes) {
         std::vector<PassImage>& passes = ref.scenes[scene.name];
@@ -154,7 +156,9 @@ ReferenceImages renderReference(const LabSpec& spec, const std::string& referenc
                                 const GradeOptions& options) {
     ReferenceImages ref;
     ref.source = "reference_solutions";
+    ScopedTiming timing("render_child", spec.id, "reference");
     const IsolatedRender r = renderFrom(spec, reference_root, options.backend, options.limits);
+    timing.stop();
     if (r.status != IsolatedStatus::Ok) {
         ref.error = std::string("the reference solution did not render (") + isolatedStatusName(r.status) +
                     "): " + r.message;
@@ -208,6 +212,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                            const GradeOptions& options, std::string* renderer) {
     grader::ReportLab lab;
     lab.id = id;
+    ScopedTiming lab_timing("lab", id);
     const auto t0 = std::chrono::steady_clock::now();
     auto finish = [&]() {
         lab.wall_ms =
@@ -237,11 +242,13 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     // What was graded, named in the report: the student files of this lab in this folder.
     lab.folder = fs::absolute(fs::path(submission_dir) / id).lexically_normal().string();
     lab.files = spec.student_files;
+    ScopedTiming student_timing("render_child", id, "student");
     const IsolatedRender student =
         renderFrom(spec, submission_dir, options.backend, options.limits,
                    options.progress ? std::function<void(const std::string&)>(
                                           [&](const std::string& event) { options.progress(id, event); })
                                     : std::function<void(const std::string&)>());
+    student_timing.stop();
     if (!student.renderer.empty()) *renderer = student.renderer;
     for (const Diagnostic& d : student.render.diagnostics) lab.diagnostics.push_back(toReportDiagnostic(d));
     if (student.status != IsolatedStatus::Ok) {
@@ -268,7 +275,10 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     std::vector<std::string> write_errors;
     LabHints hints;
     std::string hints_error;  // the lab's fault: said in the lab's message, and grading goes on
-    if (options.hints) loadLabHints((fs::path(stored_dir) / "hints").string(), &hints, &hints_error);
+    if (options.hints) {
+        ScopedTiming timing("hints", id, "load");
+        loadLabHints((fs::path(stored_dir) / "hints").string(), &hints, &hints_error);
+    }
 
     // The reference must match the lab as it is now; a mismatch (goldens older than lab.json)
     // is the lab's fault, never the student's.
@@ -320,9 +330,12 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             thresholds.flip_mean_max = t.flip_mean_max;
             thresholds.mismatch_max = t.mismatch_max;
             thresholds.pixel_tolerance = t.pixel_tolerance;
+            ScopedTiming metrics_timing("metrics", id, scene.scene);
             const grader::ImageVerdict v =
                 grader::judgeImage(theirs.color, theirs.coverage, mine.color, mine.coverage, thresholds,
                                    g.hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
+            metrics_timing.stop();
+            ScopedTiming images_timing("images", id, scene.scene);
             grader::ReportPass rp;
             rp.name = g.id;
             rp.pass = g.pass->name;
@@ -391,6 +404,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                             writeImage(strip, out_dir, base / ("zoom" + suffix + ".png"), &write_errors);
                 }
             }
+            images_timing.stop();
             if (!hints.hints.empty()) pictures.push_back({g.id, picture, shown_theirs, v.graded});
             auto& check = checks.emplace(std::make_pair(scene.scene, g.pass->name), true).first->second;
             check = check && v.passed;
@@ -442,6 +456,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
 
     // A known mistake that draws every scene it fails the way the student did explains them.
     if (!failing_pictures.empty()) {
+        ScopedTiming timing("hints", id, "explain");
         const std::map<std::string, grader::ReportHint> explained = explainFailures(hints, failing_pictures);
         for (grader::ReportScene& rs : lab.scenes) {
             const auto it = explained.find(rs.name);

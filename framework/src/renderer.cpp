@@ -26,6 +26,7 @@
 #include "shaderlab/gl.h"
 #include "shaderlab/gltf_loader.h"
 #include "shaderlab/paths.h"
+#include "shaderlab/timings.h"
 #include "uniform_values.h"
 
 namespace shaderlab {
@@ -426,7 +427,11 @@ class LabRunner {
     bool prepare() {
         // Filtered cube-map lookups blend across face edges instead of clamping at them.
         glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-        return readSources() && buildPrograms() && createTargets();
+        if (!readSources()) return false;
+        ScopedTiming compile_timing("compile", spec_.id);
+        if (!buildPrograms()) return false;
+        compile_timing.stop();
+        return createTargets();
     }
     bool renderScene(const SceneSpec& scene_spec);
 
@@ -648,6 +653,7 @@ const LabRunner::LoadedScene* LabRunner::loadScene(const SceneSpec& scene_spec) 
     const std::string path = (std::filesystem::path(spec_.labs_root) / scene_spec.file).string();
     auto it = scenes_.find(path);
     if (it != scenes_.end()) return &it->second;
+    ScopedTiming timing("scene_load", spec_.id, scene_spec.file);
     LoadedScene loaded;
     const SceneLoadResult r = loadGltfScene(path, &loaded.scene);
     if (!r.ok) {
@@ -914,6 +920,7 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     glFinish();
     scene_out.render_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (timingsEnabled()) recordTiming("scene", spec_.id, scene_spec.name, scene_out.render_ms);
     char ms[32];
     std::snprintf(ms, sizeof ms, "%.1f", scene_out.render_ms);
     report("done " + scene_spec.name + " " + ms);
@@ -1049,6 +1056,7 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
         if (tspec.depth != DepthMode::None && !target.cube()) read.push_back("depth");
     }
     if (read.empty()) return true;
+    ScopedTiming timing("readback", spec_.id, ctx.spec->name);
     const std::vector<std::uint8_t> coverage = readCoverage(target);
     for (const std::string& attachment : read) {
         PassImage img;

@@ -269,6 +269,25 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
         return result;
     }
 
+    if (detail::identicalPixels(reference, test)) {
+        // Equal images: every filtered difference is 0, so is every pixel's error.
+        const std::size_t pixels = static_cast<std::size_t>(reference.width) * reference.height;
+        std::size_t counted = pixels;
+        if (config.mask) {
+            counted = 0;
+            for (std::size_t i = 0; i < pixels; ++i) counted += config.mask->values[i] != 0;
+        }
+        if (counted == 0) {
+            result.error = "the mask selects no pixels; FLIP statistics are undefined";
+            return result;
+        }
+        if (config.want_map) result.error_map.assign(pixels, 0.0f);
+        result.ok = true;
+        result.width = reference.width;
+        result.height = reference.height;
+        result.pixel_count = counted;
+        return result;
+    }
     const detail::KernelTable& kernels = detail::kernels();
     const int width = reference.width;
     const int height = reference.height;

@@ -144,6 +144,16 @@ SsimResult computeSsim(const Image& reference, const Image& test, const SsimConf
     }
 
     const int channel_count = (reference.channels == 1 && test.channels == 1) ? 1 : 3;
+    if (detail::identicalPixels(reference, test)) {
+        // Equal windows: both SSIM factors are exactly 1 (Wang et al. 2004, eq. 13).
+        result.ok = true;
+        result.channel_count = channel_count;
+        for (int channel = 0; channel < channel_count; ++channel) result.channel_ssim[channel] = 1.0;
+        result.pixel_count = counted;
+        result.ssim = 1.0;
+        if (config.want_map) result.map.assign(static_cast<std::size_t>(width) * height, 1.0f);
+        return result;
+    }
     const double c1 = (config.k1 * config.data_range) * (config.k1 * config.data_range);
     const double c2 = (config.k2 * config.data_range) * (config.k2 * config.data_range);
     const detail::KernelTable& kernels = detail::kernels();
