@@ -167,28 +167,35 @@ int main(int argc, char** argv) {
     lab.erase("$schema");
     lab["resolution"] = {size, size};
     nlohmann::json scenes = nlohmann::json::array();
+    const auto scene_of = [&](const std::string& name, int n) {
+        return nlohmann::json{
+            {"name", name},
+            {"file", "scenes/sphere_" + std::to_string(n) + ".gltf"},
+            {"camera",
+             {{"position", {kEye.x, kEye.y, kEye.z}},
+              {"target", {0.0, 0.0, 0.0}},
+              {"fov_y_deg", kFovYDeg},
+              {"near", 1.0},
+              {"far", 10.0}}},
+            {"lights", {{{"type", "point"}, {"position", {kLight.x, kLight.y, kLight.z}}}}}};
+    };
+    // First a scene that takes llvmpipe's compilation of the shader variants at first draw.
+    scenes.push_back(scene_of("warm_up", levels.back()));
     for (int n : levels) {
         if (!writeGltf(tmp / "scenes", "sphere_" + std::to_string(n), uvSphere(n))) return 2;
         // Twice: the first run loads and uploads the mesh, the second only draws and reads back.
-        for (const char* run : {"load", "draw"}) {
-            scenes.push_back(
-                {{"name", "s" + std::to_string(n) + "_" + run},
-                 {"file", "scenes/sphere_" + std::to_string(n) + ".gltf"},
-                 {"camera",
-                  {{"position", {kEye.x, kEye.y, kEye.z}},
-                   {"target", {0.0, 0.0, 0.0}},
-                   {"fov_y_deg", kFovYDeg},
-                   {"near", 1.0},
-                   {"far", 10.0}}},
-                 {"lights", {{{"type", "point"}, {"position", {kLight.x, kLight.y, kLight.z}}}}}});
-        }
+        for (const char* run : {"load", "draw"})
+            scenes.push_back(scene_of("s" + std::to_string(n) + "_" + run, n));
     }
     lab["scenes"] = scenes;
-    lab.erase("goals");
-    lab["goals"] = {{{"id", "all"}, {"title", "all"}, {"points", 1}, {"scenes", {scenes[0]["name"]}}}};
+    nlohmann::json names = nlohmann::json::array();
+    for (const nlohmann::json& scene : scenes) names.push_back(scene["name"]);
+    lab["goals"] = {{{"id", "all"}, {"title", "all"}, {"points", 1}, {"scenes", names}}};
+    // The lab's own files (the starter shaders lab.json names), then the new lab.json.
+    for (const auto& entry : fs::directory_iterator(labs_root / "01-phong"))
+        if (entry.is_regular_file()) fs::copy_file(entry.path(), tmp / "01-phong" / entry.path().filename());
     std::ofstream(tmp / "01-phong" / "lab.json") << lab.dump(1);
     std::error_code ec;
-    fs::create_directory_symlink(labs_root / "shared", tmp / "shared", ec);
 
     int rc = 0;
     {
@@ -203,15 +210,15 @@ int main(int argc, char** argv) {
             const grader::Image truth = rayCast(size, &truth_cov);
             shaderlab::RenderOptions options;
             options.containment_root = reference_root.string();
-            // Best of three whole-lab runs for the times; the images are the same every run.
+            // Best of five whole-lab runs for the times; the images are the same every run.
             std::vector<double> load_ms(levels.size(), 1e30), draw_ms(levels.size(), 1e30);
             shaderlab::LabRender render;
-            for (int rep = 0; rep < 3; ++rep) {
+            for (int rep = 0; rep < 5; ++rep) {
                 render = shaderlab::renderLab(parsed.spec, (reference_root / "01-phong").string(), options);
                 if (render.status != shaderlab::RenderStatus::Ok) break;
                 for (std::size_t i = 0; i < levels.size(); ++i) {
-                    load_ms[i] = std::min(load_ms[i], render.scenes[2 * i].render_ms);
-                    draw_ms[i] = std::min(draw_ms[i], render.scenes[2 * i + 1].render_ms);
+                    load_ms[i] = std::min(load_ms[i], render.scenes[2 * i + 1].render_ms);
+                    draw_ms[i] = std::min(draw_ms[i], render.scenes[2 * i + 2].render_ms);
                 }
             }
             if (render.status != shaderlab::RenderStatus::Ok) {
@@ -222,7 +229,7 @@ int main(int argc, char** argv) {
                     "segments,triangles,mean_abs_error,max_abs_error,psnr_db,flip_mean,silhouette_pixels,"
                     "draw_ms,load_and_draw_ms\n");
                 for (std::size_t i = 0; i < levels.size(); ++i) {
-                    const shaderlab::PassImage& img = render.scenes[2 * i + 1].passes.back();
+                    const shaderlab::PassImage& img = render.scenes[2 * i + 2].passes.back();
                     double sum = 0.0, worst = 0.0;
                     std::size_t both = 0, silhouette = 0;
                     for (std::size_t p = 0; p < truth_cov.size(); ++p) {

@@ -71,8 +71,12 @@ std::pair<std::string, std::string> formatDistinct(double value, double limit, i
 Image quantise8(const Image& image) {
     Image out = image;
     for (float& v : out.pixels) {
-        float c = std::isnan(v) ? 0.0f : std::fmin(std::fmax(v, 0.0f), 1.0f);
-        v = std::round(c * 255.0f) / 255.0f;
+        // round(c * 255) / 255 with c clamped to [0, 1], written so the compiler inlines it (std::round
+        // and std::fmin are library calls, half of judging an image that matches): for x >= 0,
+        // floor(x + 0.5) is round-half-away-from-zero, exact in double for any float x.
+        const float c = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;  // NaN fails v > 0: 0
+        const float x = c * 255.0f;
+        v = static_cast<float>(static_cast<int>(static_cast<double>(x) + 0.5)) / 255.0f;
     }
     return out;
 }

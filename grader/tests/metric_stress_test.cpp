@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -158,6 +160,43 @@ TEST(MetricStress, HdrUpToTheHalfFloatLimitStaysFinite) {
     const ImageVerdict over = judgeImage(reference, {}, test, {}, Thresholds{}, ImageRange::Hdr);
     EXPECT_TRUE(std::isfinite(over.covered.flip_mean));
     EXPECT_FALSE(std::isnan(over.covered.psnr_db));
+}
+
+// quantise8 against the formula it implements, round(clamp(v, 0, 1) * 255) / 255, over every
+// 251st float in [0, 1] (all the values one rounding step either side of each level included by
+// the explicit list) and the values outside.
+TEST(MetricStress, QuantiseMatchesRoundOfTheClampedValue) {
+    std::vector<float> values = {-1.0f,
+                                 -0.0f,
+                                 0.0f,
+                                 1.0f,
+                                 2.0f,
+                                 1e30f,
+                                 -1e30f,
+                                 kDenormal,
+                                 std::numeric_limits<float>::infinity(),
+                                 -std::numeric_limits<float>::infinity(),
+                                 std::numeric_limits<float>::quiet_NaN()};
+    for (int level = 0; level < 256; ++level) {
+        const float half = (level + 0.5f) / 255.0f;
+        values.push_back(half);
+        values.push_back(std::nextafter(half, 0.0f));
+        values.push_back(std::nextafter(half, 1.0f));
+    }
+    for (std::uint32_t bits = 0; bits <= 0x3f800000u; bits += 251) {
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        values.push_back(f);
+    }
+    Image image(static_cast<int>(values.size()), 1, 1);
+    image.pixels = values;
+    const Image q = quantise8(image);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const float v = values[i];
+        const float c = std::isnan(v) ? 0.0f : std::fmin(std::fmax(v, 0.0f), 1.0f);
+        const float expected = std::round(c * 255.0f) / 255.0f;
+        ASSERT_EQ(q.pixels[i], expected) << "value " << v;
+    }
 }
 
 // The identical-image fast path against the full computation one float step away.
