@@ -275,10 +275,14 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     std::vector<std::string> write_errors;
     LabHints hints;
     std::string hints_error;  // the lab's fault: said in the lab's message, and grading goes on
-    if (options.hints) {
+    // Read at the first failing image: a lab that passes never needs its known-mistake pictures.
+    bool hints_read = false;
+    auto readHints = [&]() {
+        if (!options.hints || hints_read) return;
+        hints_read = true;
         ScopedTiming timing("hints", id, "load");
         loadLabHints((fs::path(stored_dir) / "hints").string(), &hints, &hints_error);
-    }
+    };
 
     // The reference must match the lab as it is now; a mismatch (goldens older than lab.json)
     // is the lab's fault, never the student's.
@@ -405,7 +409,11 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
                 }
             }
             images_timing.stop();
-            if (!hints.hints.empty()) pictures.push_back({g.id, picture, shown_theirs, v.graded});
+            // Only a failing image can be the one a known mistake explains.
+            if (!v.passed) readHints();
+            pictures.push_back(!v.passed && !hints.hints.empty()
+                                   ? FailingPicture{g.id, picture, shown_theirs, v.graded}
+                                   : FailingPicture{});
             auto& check = checks.emplace(std::make_pair(scene.scene, g.pass->name), true).first->second;
             check = check && v.passed;
             if (!v.passed) failing.push_back({i, v.reasons});
