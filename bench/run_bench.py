@@ -213,6 +213,17 @@ def grade_breakdown(shaderlab, work, start_ms, labs):
     return result
 
 
+def starter_hints(shaderlab, work):
+    """What reading each lab's known-mistake pictures costs, from grading the starter code (which
+    fails, so the hints are read): the time a passing lab no longer spends."""
+    tfile = work / "timings-starter.tsv"
+    run([shaderlab, "grade", str(ROOT / "labs"), "--out", str(work / "grade-starter"), "--no-reference"],
+        env={"SHADERLAB_TIMINGS": str(tfile)})
+    rows = parse_timings(tfile)
+    loads = [x["ms"] for x in rows if x["phase"] == "hints" and x["detail"] == "load"]
+    return {"labs": len(loads), "total_ms": sum(loads)}
+
+
 def run_metrics(build, work, quick):
     exe = build / "bench" / "bench_metrics"
     out = work / "metrics.json"
@@ -483,6 +494,11 @@ def write_page(res, figs, elapsed_s, command):
     if "BM_JudgeImageNearlyIdentical" in mt and "BM_JudgeImageIdentical" in mt:
         L.append("| judging a 512x512 image bit-identical to the reference | %.2f ms (one float step apart: full path) | %.2f ms | SSIM, FLIP and the shift-tolerant compare return at once for equal inputs (`grader/src/image_access.h`) |" %
                  (mt["BM_JudgeImageNearlyIdentical"], mt["BM_JudgeImageIdentical"]))
+    hl = res.get("hints_load", {})
+    if hl.get("labs"):
+        L.append("| known-mistake pictures of a passing lab | %.0f ms per lab (read for every lab) | 0 ms | read at the first failing image (`framework/src/grading.cpp`); the cost is measured on the starter code, which fails |" %
+                 (hl["total_ms"] / hl["labs"]))
+    L.append("| the reference picture of each graded image, grading against goldens | encoded again from the golden's pixels | the golden PNG copied | `copyOrWriteImage` in `framework/src/grading.cpp`: one PNG encode of the four or five per image saved (part of *report pictures* above) |")
     comp = sum(x["compiles"] for x in g)
     L.append("| shader compilation | - | %d program builds for %d scenes | programs are built once per lab (per vertex, fragment and attachment layout) and shared by every scene and pass; already so before this page |" %
              (comp, sum(x["scenes"] for x in g)))
@@ -684,6 +700,7 @@ def main():
     log("compare 8x8: %.1f ms" % res["startup"]["compare"][0]["ms"])
     labs = lab_ids()
     res["grade"] = grade_breakdown(shaderlab, work, res["startup"]["help_ms"], labs)
+    res["hints_load"] = starter_hints(shaderlab, work)
     res["metrics"] = run_metrics(build, work, args.quick)
     log("metrics: %.2f ms for all three at 512x512" % res["metrics"]["ms"].get("BM_AllThree", -1))
     res["tessellation"] = run_tessellation(build, work, args.quick)

@@ -208,6 +208,18 @@ std::string writeImage(const grader::Image& img, const fs::path& out_dir, const 
     return rel.generic_string();
 }
 
+// The reference picture when the reference is a stored golden PNG: the file itself, copied (its
+// pixels are exactly the image compared), instead of encoding the same pixels again. Falls back
+// to writing `img` when the copy fails.
+std::string copyOrWriteImage(const std::string& golden, const grader::Image& img, const fs::path& out_dir,
+                             const fs::path& rel, std::vector<std::string>* errors) {
+    std::error_code ec;
+    fs::create_directories((out_dir / rel).parent_path(), ec);
+    if (!golden.empty() && fs::copy_file(golden, out_dir / rel, fs::copy_options::overwrite_existing, ec))
+        return rel.generic_string();
+    return writeImage(img, out_dir, rel, errors);
+}
+
 grader::ReportLab gradeLab(const std::string& submission_dir, const std::string& id,
                            const GradeOptions& options, std::string* renderer) {
     grader::ReportLab lab;
@@ -373,8 +385,10 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             const grader::Image picture = grader::markNonFinite(shown_mine);
             rp.student_image =
                 writeImage(picture, out_dir, base / ("student" + suffix + ".png"), &write_errors);
-            rp.reference_image =
-                writeImage(shown_theirs, out_dir, base / ("reference" + suffix + ".png"), &write_errors);
+            const bool golden_png = ref.source == "goldens" && !g.hdr;
+            rp.reference_image = copyOrWriteImage(
+                golden_png ? goldenPath(stored_dir, scene.scene, g.id, final_image, false) : std::string(),
+                shown_theirs, out_dir, base / ("reference" + suffix + ".png"), &write_errors);
             grader::HeatmapConfig hc;
             hc.outline = v.mismatches.empty() ? nullptr : &v.mismatches;
             const grader::Image heat =
