@@ -357,12 +357,13 @@ def plots(res):
         "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.85 border -1\n"
         "set boxwidth 0.75\nset ylabel 'ms (one grade process per lab, goldens)'\nset xtics rotate by -35\n"
         "set key outside right top vertical\nset grid ytics\n"
-        "plot for [i=2:%d] '{grade}' using i:xtic(1) title columnheader(i)\n" % (cols + 1),
+        "colours = '#1b9e77 #d95f02 #7570b3 #e7298a #66a61e #e6ab02 #a6761d #666666 #1f78b4 #b2df8a #fb9a99 #cab2d6'\n"
+        "plot for [i=2:%d] '{grade}' using i:xtic(1) title columnheader(i) lc rgb word(colours, i-1)\n" % (cols + 1),
         "grade_breakdown", {"grade": rows})
     t = "\n".join("%s %s %s %s" % (r["segments"], r["mean_abs_error"], r["draw_ms"], r["flip_mean"])
                   for r in res["tessellation"])
     out["tess"] = gnuplot(
-        "set logscale x 2\nset logscale y\nset xlabel 'sphere segments (rings = segments / 2)'\n"
+        "set logscale x 2\nset logscale y\nset format y '%.0e'\nset xlabel 'sphere segments (rings = segments / 2)'\n"
         "set ylabel 'mean |error| against the ray cast'\nset y2label 'draw + read-back ms (256x256)'\n"
         "set y2tics\nset ytics nomirror\nset grid\nset key top center\n"
         "plot '{t}' using 1:2 with linespoints lw 2 title 'mean abs error (left)', "
@@ -379,7 +380,7 @@ def plots(res):
         "metric_size", {"m": "\n".join("%d %f" % (s, v) for s, v in sizes)})
     b = "\n".join("%s %s %s" % (r["taps"], r["l1_error"], r["max_weight_error"]) for r in res["bloom"]["taps"])
     out["bloom"] = gnuplot(
-        "set logscale y\nset xlabel 'taps per direction (sigma = 1.5 texels)'\n"
+        "set logscale y\nset format y '%.0e'\nset xlabel 'taps per direction (sigma = 1.5 texels)'\n"
         "set ylabel 'error against the untruncated Gaussian'\nset grid\nset xtics 2\n"
         "plot '{b}' using 1:2 with linespoints lw 2 title 'L1 over all weights', "
         "'{b}' using 1:3 with linespoints lw 2 title 'largest weight error'\n",
@@ -686,10 +687,17 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--quick", action="store_true", help="fewer repetitions, fewer resolutions (for testing)")
     ap.add_argument("--command", default="bash scripts/bench.sh")
+    ap.add_argument("--replot", action="store_true",
+                    help="no measuring: rewrite the page and plots from the last run's results.json")
     args = ap.parse_args()
     t0 = time.perf_counter()
     build = Path(args.build).resolve()
     work = Path(args.out).resolve()
+    if args.replot:
+        res = json.loads((work / "results.json").read_text())
+        write_page(res, plots(res), res.get("elapsed_s", 0.0), args.command)
+        log("rewrote %s from %s" % (DOC, work / "results.json"))
+        return
     if work.exists():
         shutil.rmtree(work)
     work.mkdir(parents=True)
@@ -709,6 +717,7 @@ def main():
     sizes = [128, 256] if args.quick else [64, 128, 256, 384]
     res["resolution"] = run_resolution(shaderlab, work, ["01-phong", "08-gooch"], sizes)
     res["unneeded"] = unneeded_passes()
+    res["elapsed_s"] = time.perf_counter() - t0
     (work / "results.json").write_text(json.dumps(res, indent=1))
     figs = plots(res)
     write_page(res, figs, time.perf_counter() - t0, args.command)

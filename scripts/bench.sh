@@ -6,6 +6,7 @@
 # machine; run it on a quiet one, since every figure is a wall-clock time.
 #   bash scripts/bench.sh            # the page
 #   bash scripts/bench.sh --quick    # fewer repetitions and resolutions, to try the machinery
+#   bash scripts/bench.sh --replot   # no measuring: the page and plots again from the last results
 # Raw results: build/bench-results/results.json. Needs gnuplot for the plots (scripts/setup.sh
 # installs it; without it the page has tables only).
 set -euo pipefail
