@@ -82,31 +82,33 @@ def sample_linear(values, spacing, pos):
     return a * (1.0 - f) + b * f
 
 
-def run_axis(impulse_at, size, levels, blur_while_downsampling):
+def run_axis(impulse_at, size, levels, blur_in_first_pass):
     """One axis of the chain, full resolution `size`, impulse at pixel `impulse_at`. Returns the
-    output grid (values, spacing in full-res pixels) of each level."""
+    output grid (values, spacing in full-res pixels) of each level. As lab.json declares it, the
+    first (horizontal) pass of a level keeps its input's size and the second (vertical) pass
+    writes an image half as large; both step one texel of their input. `blur_in_first_pass`: this
+    axis is the first pass's direction (x)."""
     w = tap_weights(3)
     grid, spacing = [0.0] * size, 1.0
     grid[impulse_at] = 1.0
     out = []
     for _ in range(levels):
-        # First pass of the level: target half the size of its input; taps along this axis only
-        # when this axis is the pass's direction (x: the horizontal pass downsamples).
-        new_spacing = spacing * 2.0
-        n = len(grid) // 2
-        taps = range(-3, 4) if blur_while_downsampling else [0]
-        weights = w if blur_while_downsampling else [1.0]
-        first = []
-        for i in range(n):
-            c = (i + 0.5) * new_spacing
-            first.append(sum(weights[idx] * sample_linear(grid, spacing, c + k * spacing)
-                             for idx, k in enumerate(taps)))
-        # Second pass: same size, taps along this axis only when it is that pass's direction.
-        if blur_while_downsampling:
-            second = first
+        # First pass: same size, taps along this axis only when it is the pass's direction.
+        if blur_in_first_pass:
+            first = [sum(w[idx] * sample_linear(grid, spacing, (i + 0.5) * spacing + k * spacing)
+                         for idx, k in enumerate(range(-3, 4))) for i in range(len(grid))]
         else:
-            second = [sum(w[idx] * sample_linear(first, new_spacing, (i + 0.5) * new_spacing + k * new_spacing)
-                          for idx, k in enumerate(range(-3, 4))) for i in range(n)]
+            first = grid
+        # Second pass: half the size; each output centre sits between two input texels, so the
+        # bilinear taps average pairs; taps along this axis only when it is the pass's direction.
+        new_spacing = spacing * 2.0
+        taps = [0] if blur_in_first_pass else range(-3, 4)
+        weights = [1.0] if blur_in_first_pass else w
+        second = []
+        for i in range(len(first) // 2):
+            c = (i + 0.5) * new_spacing
+            second.append(sum(weights[idx] * sample_linear(first, spacing, c + k * spacing)
+                              for idx, k in enumerate(taps)))
         grid, spacing = second, new_spacing
         out.append((grid, spacing))
     return out
@@ -131,8 +133,9 @@ def levels_table(max_levels=4, size=512):
     rows = []
     reads = 0.0
     for level in range(max_levels):
-        # texture reads per full-res pixel: 2 passes x 7 taps x (1/4)^(level+1) of the pixels
-        reads += 2 * 7 * 0.25 ** (level + 1)
+        # texture reads per full-res pixel: 7 taps over (1/4)^level of the pixels (the horizontal
+        # pass, at its input's size) and 7 over (1/4)^(level+1) (the vertical pass, halving)
+        reads += 7 * 0.25 ** level + 7 * 0.25 ** (level + 1)
         for axis, blur_first in (("x", True), ("y", False)):
             step = 2 ** (level + 1)
             sigmas, errors, centres = [], [], []

@@ -644,12 +644,14 @@ def defaults_text(res):
         x0 = [r for r in lv if r["level"] == "0" and r["axis"] == "x"][0]
         y0 = [r for r in lv if r["level"] == "0" and r["axis"] == "y"][0]
         out.append("* **Bloom levels: three**, as now. Each level roughly doubles the glow's width for a quarter "
-                   "of the previous level's reads (the cost column levels off at 4.7 reads per pixel), and each "
-                   "stays within a few percent (L1) of a Gaussian. The pyramid is anisotropic, though: along x "
-                   "level 0 has sigma %.2f px, along y %.2f px, because the horizontal pass blurs at the input's "
-                   "texel step while halving and the vertical pass at the half-size step; glare is about twice as "
-                   "tall as wide. Changing it changes the lab and its goldens, so it is reported, not changed." %
-                   (float(x0["effective_sigma_px"]), float(y0["effective_sigma_px"])))
+                   "of the previous level's reads (the cost column levels off at %.1f reads per pixel), and each "
+                   "stays within a few percent (L1) of a Gaussian. Level 0 has sigma %.2f px along x and %.2f px "
+                   "along y: both passes of a level step one texel of the same (input) grid and the vertical pass "
+                   "halves the image, so the glare is round. (Until 2026-11 the horizontal pass halved the image "
+                   "while stepping the larger input's texels: the glare was twice as tall as wide; this bench "
+                   "found it.)" %
+                   (float(lv[-1]["texture_reads_per_pixel"]), float(x0["effective_sigma_px"]),
+                    float(y0["effective_sigma_px"])))
     rr = res.get("resolution") or []
     if rr:
         def right(size):
