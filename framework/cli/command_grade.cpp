@@ -191,14 +191,6 @@ bool writeReports(const grader::Report& report, const fs::path& out, const std::
     return ok;
 }
 
-IsolationLimits limitsOf(const LimitArgs& args) {
-    IsolationLimits limits;
-    limits.timeout_s = args.timeout_s;
-    limits.compile_timeout_s = args.compile_timeout_s;
-    limits.memory_bytes = static_cast<std::size_t>(args.memory_mib) << 20;
-    return limits;
-}
-
 bool allPassed(const grader::Report& report) {
     for (const grader::ReportLab& lab : report.labs)
         if (lab.status != "passed") return false;
@@ -206,6 +198,14 @@ bool allPassed(const grader::Report& report) {
 }
 
 }  // namespace
+
+IsolationLimits isolationLimits(const LimitArgs& args) {
+    IsolationLimits limits;
+    limits.timeout_s = args.timeout_s;
+    limits.compile_timeout_s = args.compile_timeout_s;
+    limits.memory_bytes = static_cast<std::size_t>(args.memory_mib) << 20;
+    return limits;
+}
 
 int runGrade(const GradeArgs& args) {
     std::error_code ec;
@@ -217,7 +217,7 @@ int runGrade(const GradeArgs& args) {
     parseBackend(args.common.backend, &options.backend);
     if (!selectLabs(args.common, args.common.labs, &options.labs_root, &options.labs)) return 2;
     options.out_dir = args.out_dir;
-    options.limits = limitsOf(args.limits);
+    options.limits = isolationLimits(args.limits);
     if (!args.no_reference)
         options.reference_root =
             args.reference_root.empty() ? defaultReferenceRoot(options.labs_root) : args.reference_root;
@@ -248,7 +248,7 @@ int runCheck(const CheckArgs& args) {
     GradeOptions options;
     parseBackend(args.common.backend, &options.backend);
     if (!selectLabs(args.common, {args.lab}, &options.labs_root, &options.labs)) return 2;
-    options.limits = limitsOf(args.limits);
+    options.limits = isolationLimits(args.limits);
     if (!args.no_reference) options.reference_root = defaultReferenceRoot(options.labs_root);
     // The student's own copy (shaderlab start), never the starter code in labs/.
     const std::string submission = args.submission.empty() ? workRoot(options.labs_root) : args.submission;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "shaderlab/isolated_render.h"
+
 namespace shaderlab::cli {
 
 struct CommonOptions {
@@ -27,6 +29,7 @@ struct LimitArgs {
     double compile_timeout_s = 30.0;  // --compile-timeout: context, files, compile and link
     std::size_t memory_mib = 2048;    // --memory: resident memory of the render process
 };
+IsolationLimits isolationLimits(const LimitArgs& args);
 
 struct StartArgs {
     CommonOptions common;
