@@ -460,7 +460,6 @@ class LabRunner {
         }
         return false;
     }
-    // A problem with a lab.json key: the lab's file is named, so it reads like a parser message.
     // The counters guarded programs write when a loop runs past kLoopGuardLimit (shader_program.h).
     void createLoopGuard() {
         if (!GLAD_GL_VERSION_4_3) return;
@@ -489,6 +488,7 @@ class LabRunner {
         out_.diagnostics.push_back({file, 0, 0, "error", message});
         return fail(RenderStatus::RenderError, file + ": " + message);
     }
+    // A problem with a lab.json key: the lab's file is named, so it reads like a parser message.
     bool failAt(RenderStatus status, const std::string& path_and_problem) {
         out_.diagnostics.push_back({"lab.json", 0, 0, "error", path_and_problem});
         return fail(status, origin_ + ": " + path_and_problem);
@@ -561,8 +561,8 @@ bool LabRunner::readSources() {
             if (sources_.count(*file)) continue;
             FileText t = readProgramFile(*file);
             if (!t.ok) {
-                // Absent: missing. Present but refused (too large, a link out of the submission,
-                // a folder): it cannot be compiled, which is a compile error naming why.
+                // Absent (or a link out of the submission): missing. Present but refused (too
+                // large, a folder): it cannot be compiled, which is a compile error naming why.
                 out_.diagnostics.push_back({*file, 0, 0, "error", t.error});
                 return fail(t.missing ? RenderStatus::Missing : RenderStatus::CompileError, t.error);
             }
