@@ -1,9 +1,14 @@
 // `shaderlab grade`, `check`, `compare` and `goldens`.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -11,8 +16,10 @@
 #include <sstream>
 
 #include "commands.h"
+#include "grader/atomic_file.h"
 #include "grader/report.h"
 #include "grader/scoring.h"
+#include "grader/untrusted_text.h"
 #include "shaderlab/grading.h"
 #include "shaderlab/lab_catalog.h"
 #include "shaderlab/lab_spec.h"
@@ -30,10 +37,60 @@ std::string defaultReferenceRoot(const std::string& labs_root) {
     return fs::is_directory(p, ec) ? p.string() : std::string();
 }
 
-bool writeText(const fs::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    return static_cast<bool>(out);
+// Every report is written whole or not at all (grader/atomic_file.h).
+bool writeText(const fs::path& path, const std::string& text, std::string* error) {
+    return grader::writeFileAtomically(path.string(), text, error);
+}
+
+// The names a run writes at the top of its output folder.
+const char* const kReportNames[] = {"report.json", "report.html", "results.json", "report.junit.xml"};
+
+// Makes the output folder ready before any rendering, so that a folder the reports cannot go to
+// costs seconds, not a whole run: created if need be, writable, no link planted at a report's
+// name, and no other shaderlab run writing into it. The lock (flock on <out>/.shaderlab.lock) is
+// held until the process ends; a second run on the same folder is refused rather than mixing
+// its pictures with the first one's. Returns false with the reason printed.
+bool prepareOutput(const fs::path& out) {
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec || !fs::is_directory(out, ec)) {
+        std::cerr << "shaderlab: " << out.string() << ": cannot create the output folder"
+                  << (ec ? " (" + ec.message() + ")" : std::string()) << "\n";
+        return false;
+    }
+    const fs::path lock = out / ".shaderlab.lock";
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        std::cerr << "shaderlab: " << out.string() << ": the output folder is not writable ("
+                  << std::strerror(errno) << ")\n";
+        return false;
+    }
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        std::cerr << "shaderlab: " << out.string()
+                  << ": another shaderlab run is writing into this folder; wait for it to finish or "
+                     "give this one another --out\n";
+        close(fd);
+        return false;
+    }
+    // Kept open (and locked) until the process exits.
+    std::string error;
+    const fs::path probe = out / ".shaderlab.write-test";
+    if (!grader::writeFileAtomically(probe.string(), "shaderlab\n", &error, false)) {
+        std::cerr << "shaderlab: " << out.string() << ": the output folder is not writable: " << error
+                  << "\n";
+        return false;
+    }
+    fs::remove(probe, ec);
+    for (const char* name : kReportNames) {
+        struct stat st {};
+        if (lstat((out / name).c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+            std::cerr << "shaderlab: " << (out / name).string()
+                      << (S_ISLNK(st.st_mode) ? ": is a symbolic link" : ": is not a regular file")
+                      << "; reports are never written through one: remove it or choose another --out\n";
+            return false;
+        }
+    }
+    return true;
 }
 
 struct Palette {
@@ -70,7 +127,8 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
     if (!ok) std::printf("  (%s)", lab.status.c_str());
     std::printf("\n");
     // A build failure's message repeats its first diagnostic, printed below.
-    if (!lab.message.empty() && lab.diagnostics.empty()) std::printf("    %s\n", lab.message.c_str());
+    if (!lab.message.empty() && lab.diagnostics.empty())
+        std::printf("    %s\n", grader::printableText(lab.message).c_str());
     for (const grader::ReportDiagnostic& d : lab.diagnostics)
         std::printf("%s\n", grader::formatDiagnostic(d, lab.id + "/", "    ").c_str());
     if (!verbose) return;
@@ -117,18 +175,18 @@ bool selectLabs(const CommonOptions& common, const std::vector<std::string>& wan
     return ok;
 }
 
-bool writeReports(const grader::Report& report, const fs::path& out,
-                  const std::vector<std::string>& formats) {
-    bool ok = writeText(out / "report.json", grader::reportToJson(report));
+bool writeReports(const grader::Report& report, const fs::path& out, const std::vector<std::string>& formats,
+                  std::string* error) {
+    bool ok = writeText(out / "report.json", grader::reportToJson(report), error);
     // report.html embeds its pictures (up to 20 MB) so that it opens anywhere on its own;
     // results.json carries the failing ones (up to 2 MB) in its html output.
-    ok = writeText(out / "report.html", grader::reportToHtml(report, {out.string(), 20u << 20})) && ok;
+    ok = ok && writeText(out / "report.html", grader::reportToHtml(report, {out.string(), 20u << 20}), error);
     for (const std::string& f : formats) {
         if (f == "gradescope")
-            ok = writeText(out / "results.json",
-                           grader::reportToGradescope(report, {out.string(), 2u << 20})) &&
-                 ok;
-        if (f == "junit") ok = writeText(out / "report.junit.xml", grader::reportToJunit(report)) && ok;
+            ok = ok && writeText(out / "results.json",
+                                 grader::reportToGradescope(report, {out.string(), 2u << 20}), error);
+        if (f == "junit")
+            ok = ok && writeText(out / "report.junit.xml", grader::reportToJunit(report), error);
     }
     return ok;
 }
@@ -141,6 +199,14 @@ bool allPassed(const grader::Report& report) {
 
 }  // namespace
 
+IsolationLimits isolationLimits(const LimitArgs& args) {
+    IsolationLimits limits;
+    limits.timeout_s = args.timeout_s;
+    limits.compile_timeout_s = args.compile_timeout_s;
+    limits.memory_bytes = static_cast<std::size_t>(args.memory_mib) << 20;
+    return limits;
+}
+
 int runGrade(const GradeArgs& args) {
     std::error_code ec;
     if (!fs::is_directory(args.submission, ec)) {
@@ -151,28 +217,25 @@ int runGrade(const GradeArgs& args) {
     parseBackend(args.common.backend, &options.backend);
     if (!selectLabs(args.common, args.common.labs, &options.labs_root, &options.labs)) return 2;
     options.out_dir = args.out_dir;
-    options.limits.timeout_s = args.timeout_s;
+    options.limits = isolationLimits(args.limits);
     if (!args.no_reference)
         options.reference_root =
             args.reference_root.empty() ? defaultReferenceRoot(options.labs_root) : args.reference_root;
     const fs::path out = args.out_dir;
-    fs::create_directories(out, ec);
-    if (ec || !fs::is_directory(out, ec)) {
-        std::cerr << "shaderlab: " << out.string() << ": cannot create the output folder\n";
-        return 2;
-    }
+    if (!prepareOutput(out)) return 2;
 
     // The reports are rewritten after every lab, so an interrupted run keeps what it finished.
     bool written = true;
+    std::string error;
     grader::Report report = gradeSubmission(args.submission, options, [&](const grader::Report& so_far) {
         printLab(so_far.labs.back(), false);
         grader::Report r = so_far;
         r.tool_version = SHADERLAB_VERSION;
-        written = writeReports(r, out, args.formats);
+        written = written && writeReports(r, out, args.formats, &error);
     });
     report.tool_version = SHADERLAB_VERSION;
-    if (!written || !writeReports(report, out, args.formats)) {
-        std::cerr << "shaderlab: cannot write the reports into " << out.string() << "\n";
+    if (!written || !writeReports(report, out, args.formats, &error)) {
+        std::cerr << "shaderlab: cannot write the reports into " << out.string() << ": " << error << "\n";
         return 2;
     }
     std::printf("score %.2f / %.2f\nreport: %s\n", report.score, report.max_score,
@@ -185,7 +248,7 @@ int runCheck(const CheckArgs& args) {
     GradeOptions options;
     parseBackend(args.common.backend, &options.backend);
     if (!selectLabs(args.common, {args.lab}, &options.labs_root, &options.labs)) return 2;
-    options.limits.timeout_s = args.timeout_s;
+    options.limits = isolationLimits(args.limits);
     if (!args.no_reference) options.reference_root = defaultReferenceRoot(options.labs_root);
     // The student's own copy (shaderlab start), never the starter code in labs/.
     const std::string submission = args.submission.empty() ? workRoot(options.labs_root) : args.submission;
@@ -203,11 +266,7 @@ int runCheck(const CheckArgs& args) {
     options.out_dir = args.out_dir.empty()
                           ? (fs::path(options.labs_root).parent_path() / "out" / "check").string()
                           : args.out_dir;
-    fs::create_directories(options.out_dir, ec);
-    if (ec || !fs::is_directory(options.out_dir, ec)) {
-        std::cerr << "shaderlab: " << options.out_dir << ": cannot create the output folder\n";
-        return 2;
-    }
+    if (!prepareOutput(options.out_dir)) return 2;
     const LabSpecResult parsed = parseLabSpec((fs::path(options.labs_root) / args.lab).string());
     std::printf("checking %s (", lab_folder.string().c_str());
     for (std::size_t i = 0; i < parsed.spec.student_files.size(); ++i)
@@ -228,8 +287,9 @@ int runCheck(const CheckArgs& args) {
     grader::Report report = gradeSubmission(submission, options);
     report.tool_version = SHADERLAB_VERSION;
     for (const grader::ReportLab& lab : report.labs) printLab(lab, true);
-    if (!writeReports(report, options.out_dir, {})) {
-        std::cerr << "shaderlab: cannot write the report into " << options.out_dir << "\n";
+    std::string error;
+    if (!writeReports(report, options.out_dir, {}, &error)) {
+        std::cerr << "shaderlab: cannot write the report into " << options.out_dir << ": " << error << "\n";
         return 2;
     }
     std::printf("images and report: %s\n",

@@ -3,8 +3,11 @@
 // command could not run (bad arguments, malformed lab.json, no GL context).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
+
+#include "shaderlab/isolated_render.h"
 
 namespace shaderlab::cli {
 
@@ -19,6 +22,14 @@ struct CommonOptions {
 bool resolveLabsRoot(const CommonOptions& common, std::string* labs_root);
 // Where students work: <course>/work, beside labs/.
 std::string workRoot(const std::string& labs_root);
+
+// The limits of each lab's render process (shaderlab/isolated_render.h, docs/grading.md "Limits").
+struct LimitArgs {
+    double timeout_s = 60.0;          // --timeout: drawing
+    double compile_timeout_s = 30.0;  // --compile-timeout: context, files, compile and link
+    std::size_t memory_mib = 2048;    // --memory: resident memory of the render process
+};
+IsolationLimits isolationLimits(const LimitArgs& args);
 
 struct StartArgs {
     CommonOptions common;
@@ -45,7 +56,7 @@ struct GradeArgs {
     std::string reference_root;        // empty: <labs>/../reference_solutions when it exists
     bool no_reference = false;         // grade against the stored goldens even when references exist
     std::vector<std::string> formats;  // json (always), gradescope, junit
-    double timeout_s = 60.0;
+    LimitArgs limits;
 };
 int runGrade(const GradeArgs& args);
 
@@ -55,7 +66,7 @@ struct CheckArgs {
     std::string submission;  // empty: <course>/work (see `shaderlab start`)
     std::string out_dir;     // empty: out/check beside the labs folder
     bool no_reference = false;
-    double timeout_s = 10.0;  // short: a student waits on an endless loop
+    LimitArgs limits{10.0, 30.0, 2048};  // a short draw limit: a student waits on an endless loop
 };
 int runCheck(const CheckArgs& args);
 

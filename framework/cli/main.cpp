@@ -10,6 +10,20 @@ int main(int argc, char** argv) {
     CLI::App app{"shaderlab: render and grade GLSL shading labs"};
     app.require_subcommand(1);
 
+    // The limits of each lab's render process, for grade and check (docs/grading.md, "Limits").
+    auto add_limits = [](CLI::App* cmd, LimitArgs* limits, const char* draw_help) {
+        cmd->add_option("--timeout", limits->timeout_s, draw_help)
+            ->check(CLI::Range(0.1, 86400.0))
+            ->capture_default_str();
+        cmd->add_option("--compile-timeout", limits->compile_timeout_s,
+                        "seconds a lab may take to start, compile and link its shaders")
+            ->check(CLI::Range(0.1, 86400.0))
+            ->capture_default_str();
+        cmd->add_option("--memory", limits->memory_mib, "MiB of memory a lab's render process may use")
+            ->check(CLI::Range(std::size_t(64), std::size_t(1) << 20))
+            ->capture_default_str();
+    };
+
     auto add_common = [](CLI::App* cmd, CommonOptions* common) {
         cmd->add_option("--backend", common->backend, "OpenGL context backend")
             ->check(CLI::IsMember({"osmesa", "egl"}))
@@ -39,9 +53,7 @@ int main(int argc, char** argv) {
     grade_cmd->add_option("--reference", grade.reference_root,
                           "reference solutions folder (default: reference_solutions beside labs/)");
     grade_cmd->add_flag("--no-reference", grade.no_reference, "grade against the stored golden images");
-    grade_cmd->add_option("--timeout", grade.timeout_s, "seconds one lab may take to render")
-        ->check(CLI::Range(0.1, 86400.0))
-        ->capture_default_str();
+    add_limits(grade_cmd, &grade.limits, "seconds one lab may take to draw its scenes");
     add_common(grade_cmd, &grade.common);
 
     StartArgs start;
@@ -60,9 +72,7 @@ int main(int argc, char** argv) {
                           "folder mirroring labs/ (default: work/ beside labs/, made by `shaderlab start`)");
     check_cmd->add_option("--out", check.out_dir, "where images and the report go (default: out/check)");
     check_cmd->add_flag("--no-reference", check.no_reference, "use the stored golden images");
-    check_cmd->add_option("--timeout", check.timeout_s, "seconds the lab may take to render")
-        ->check(CLI::Range(0.1, 86400.0))
-        ->capture_default_str();
+    add_limits(check_cmd, &check.limits, "seconds the lab may take to draw its scenes");
     check_cmd->add_option("--backend", check.common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
     check_cmd->add_option("--labs", check.common.labs_root, "folder holding the labs");
 

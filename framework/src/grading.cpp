@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "grader/atomic_file.h"
 #include "grader/heatmap.h"
 #include "grader/report_images.h"
 #include "grader/scoring.h"
@@ -198,10 +199,11 @@ grader::ReportMetrics reportMetrics(const grader::MetricSet& m, const grader::Im
 // the reason added to `errors`).
 std::string writeImage(const grader::Image& img, const fs::path& out_dir, const fs::path& rel,
                        std::vector<std::string>* errors) {
-    std::error_code ec;
-    fs::create_directories((out_dir / rel).parent_path(), ec);
     std::string err;
-    if (!grader::writePng(img, (out_dir / rel).string(), &err)) {
+    // Folder by folder, refusing a link planted on the way (atomic_file.h); writePng refuses one
+    // at the file's own name.
+    if (!grader::createFoldersInside(out_dir.string(), rel.parent_path().string(), &err) ||
+        !grader::writePng(img, (out_dir / rel).string(), &err)) {
         errors->push_back(err);
         return {};
     }
@@ -266,6 +268,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     if (student.status != IsolatedStatus::Ok) {
         lab.status = labStatusOf(student.status);
         lab.message = student.message;
+        lab.limit = student.limit;
         return finish();
     }
 

@@ -42,15 +42,18 @@ PathResult resolveInside(const std::string& root, const std::string& relative) {
     }
     const fs::path joined = canon_root / relative;
     if (!fs::exists(fs::symlink_status(joined, ec))) {
+        res.missing = true;
         res.error = shown + ": file not found";
         return res;
     }
     const fs::path canon = fs::canonical(joined, ec);
     if (ec) {
+        res.missing = true;
         res.error = shown + ": broken link or unreadable path";
         return res;
     }
     if (!isWithin(canon_root, canon)) {
+        res.missing = true;
         res.error = shown + ": resolves outside " + canon_root.string() + " (symlink or ..), refused";
         return res;
     }
@@ -68,7 +71,8 @@ FileText readFile(const std::string& path, std::size_t max_bytes) {
     out.path = path;
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
-        out.error = path + (fs::exists(path, ec) ? ": not a regular file" : ": file not found");
+        out.missing = !fs::exists(path, ec);
+        out.error = path + (out.missing ? ": file not found" : ": not a regular file");
         return out;
     }
     const auto size = fs::file_size(path, ec);
@@ -99,6 +103,7 @@ FileText readFileInside(const std::string& root, const std::string& relative, st
         FileText out;
         out.path = (fs::path(root) / relative).string();
         out.error = p.error;
+        out.missing = p.missing;
         return out;
     }
     return readFile(p.path, max_bytes);

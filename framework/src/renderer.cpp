@@ -420,6 +420,7 @@ class LabRunner {
         for (auto& [key, tex] : input_textures_) glDeleteTextures(1, &tex.id);
         for (auto& [key, sampler] : samplers_) glDeleteSamplers(1, &sampler);
         if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+        if (loop_guard_) glDeleteBuffers(1, &loop_guard_);
         glUseProgram(0);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
@@ -431,7 +432,9 @@ class LabRunner {
         ScopedTiming compile_timing("compile", spec_.id);
         if (!buildPrograms()) return false;
         compile_timing.stop();
-        return createTargets();
+        if (!createTargets()) return false;
+        createLoopGuard();
+        return true;
     }
     bool renderScene(const SceneSpec& scene_spec);
 
@@ -461,6 +464,34 @@ class LabRunner {
             out_.message = message;
         }
         return false;
+    }
+    // The counters guarded programs write when a loop runs past kLoopGuardLimit (shader_program.h).
+    void createLoopGuard() {
+        if (!GLAD_GL_VERSION_4_3) return;
+        const GLuint zero[2] = {0, 0};
+        glGenBuffers(1, &loop_guard_);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard_);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, zero, GL_DYNAMIC_READ);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLoopGuardBinding, loop_guard_);
+    }
+    // After a pass: did a loop of its program run past the guard? Then the render stops here.
+    bool checkLoopGuard(const PassSpec& pass, const std::string& scene) {
+        if (!loop_guard_) return true;
+        GLuint counts[2] = {0, 0};
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard_);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counts, counts);
+        if (counts[0] == 0 && counts[1] == 0) return true;
+        const bool vertex = counts[0] > 0;
+        const std::string& file = vertex ? pass.program.vertex : pass.program.fragment;
+        const std::string message =
+            "endless loop: in pass '" + pass.name + "' of scene '" + scene + "', a loop ran more than " +
+            std::to_string(kLoopGuardLimit) + " times for one " + (vertex ? "vertex" : "pixel") + " (" +
+            std::to_string(vertex ? counts[0] : counts[1]) + (vertex ? " vertices" : " pixels") +
+            "); the grader stops it there, as a GPU would hang on it. Check that every loop's condition "
+            "becomes false: its counter must change, and towards the end";
+        out_.endless_loop = true;
+        out_.diagnostics.push_back({file, 0, 0, "error", message});
+        return fail(RenderStatus::RenderError, file + ": " + message);
     }
     // A problem with a lab.json key: the lab's file is named, so it reads like a parser message.
     bool failAt(RenderStatus status, const std::string& path_and_problem) {
@@ -509,6 +540,7 @@ class LabRunner {
     std::set<std::string> warned_;
     std::vector<std::pair<GLuint, GLenum>> bound_units_;  // (unit, texture target) of the last pass
     std::string all_program_text_;                        // every program's prepared sources
+    GLuint loop_guard_ = 0;                               // see createLoopGuard()
 };
 
 // Student files come from the submission, every other program file from the lab folder (or the
@@ -534,8 +566,10 @@ bool LabRunner::readSources() {
             if (sources_.count(*file)) continue;
             FileText t = readProgramFile(*file);
             if (!t.ok) {
+                // Absent (or a link out of the submission): missing. Present but refused (too
+                // large, a folder): it cannot be compiled, which is a compile error naming why.
                 out_.diagnostics.push_back({*file, 0, 0, "error", t.error});
-                return fail(RenderStatus::Missing, t.error);
+                return fail(t.missing ? RenderStatus::Missing : RenderStatus::CompileError, t.error);
             }
             sources_[*file] = std::move(t.text);
         }
@@ -569,7 +603,7 @@ bool LabRunner::buildPrograms() {
         ShaderProgram& prog = programs_[key];
         prog.build(StageSource{pass.program.vertex, sources_[pass.program.vertex], includes},
                    StageSource{pass.program.fragment, sources_[pass.program.fragment], includes},
-                   target.attachments);
+                   target.attachments, /*guard_loops=*/true);
         all_program_text_ += prog.preparedText(0) + prog.preparedText(1);
         // A file in two programs (03-cel-outline's outline.frag, with two vertex stages) would
         // report each of its problems twice.
@@ -905,7 +939,7 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     for (std::size_t i = 0; i < spec_.passes.size();) {
         const PassSpec& pass = spec_.passes[i];
         if (pass.loop < 0) {
-            if (!runPass(i, 0, true, ctx)) return false;
+            if (!runPass(i, 0, true, ctx) || !checkLoopGuard(pass, scene_spec.name)) return false;
             ++i;
             continue;
         }
@@ -914,7 +948,8 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
         const int count = it != scene_spec.repeats.end() ? it->second : loop.count;
         for (int k = 0; k < count; ++k)
             for (std::size_t j = loop.first; j <= loop.last; ++j)
-                if (!runPass(j, k, k + 1 == count, ctx)) return false;
+                if (!runPass(j, k, k + 1 == count, ctx) || !checkLoopGuard(spec_.passes[j], scene_spec.name))
+                    return false;
         i = loop.last + 1;
     }
     glFinish();

@@ -22,6 +22,11 @@ constexpr int kMaxIncludeDepth = 16;
 // Driver log lines longer than this are cut before any regex sees them (std::regex recurses per
 // character and a student can make the driver echo a huge line).
 constexpr std::size_t kMaxLogLine = 2000;
+// A driver log is cut after this many bytes, and at most this many of its messages are explained.
+constexpr std::size_t kMaxLogBytes = 1u << 20;
+constexpr std::size_t kMaxExplained = 40;
+// A message and its continuation lines (Mesa's candidate signatures) stop growing past this.
+constexpr std::size_t kMaxMessage = 8000;
 
 // Skips blank lines, // comments and /* */ comments at the start of the file to find the
 // `#version` directive, which must come before anything else but comments and whitespace.
@@ -99,6 +104,25 @@ bool includeDirective(const std::string& line, std::string* name) {
     return true;
 }
 
+// A NUL byte in a shader file: the driver would read the source only up to it (C strings), so
+// the rest of the file would vanish without a word. Finds the first one, as line and column.
+bool findNulByte(const std::string& text, const std::string& file, Diagnostic* d) {
+    const std::size_t at = text.find('\0');
+    if (at == std::string::npos) return false;
+    int line = 1;
+    for (std::size_t i = 0; i < at; ++i) line += text[i] == '\n' ? 1 : 0;
+    // No column: the line as a report shows it is cut at the NUL.
+    *d = {file,
+          line,
+          0,
+          "error",
+          "this file holds a NUL byte (byte " + std::to_string(at) + " of the file, line " +
+              std::to_string(line) + "): it is not plain text, so it was not compiled",
+          "A shader file is plain text. A NUL byte comes from a file saved as UTF-16 (some Windows "
+          "editors) or from a binary file in its place: save it again as UTF-8 text."};
+    return true;
+}
+
 struct Expander {
     const IncludeReader& includes;
     bool old_line_rule;
@@ -139,6 +163,12 @@ struct Expander {
                 continue;
             }
             if (!seen.insert(t.path).second) continue;  // each file once, like an include guard
+            Diagnostic nul;
+            if (findNulByte(t.text, name, &nul)) {
+                out.errors.push_back(nul);
+                out.rejected = true;
+                continue;
+            }
             const std::size_t index = out.files.size();
             out.files.push_back(name);
             out.texts.push_back(t.text);
@@ -165,6 +195,12 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
     PreparedSource out;
     out.files.push_back(file);
     out.texts.push_back(bom ? student_text.substr(3) : student_text);
+    Diagnostic nul;
+    if (findNulByte(student_text, file, &nul)) {
+        out.errors.push_back(nul);
+        out.rejected = true;
+        return out;
+    }
     std::string text;
     int next_student_line = 1;
     // GLSL 3.30 (ES 3.00) and later: "#line N" numbers the next line N. Earlier versions number
@@ -190,6 +226,114 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
     expander.append(lines, static_cast<std::size_t>(next_student_line - 1), next_student_line, 0, 0, text);
     out.text = std::move(text);
     out.first_student_line = next_student_line;
+    return out;
+}
+
+std::string loopGuardPrelude(int stage) {
+    const std::string limit = std::to_string(kLoopGuardLimit);
+    return "#extension GL_ARB_shader_storage_buffer_object : require\n"
+           "layout(std430) buffer ShaderlabLoopGuard { uint shaderlab_loop_overruns[2]; };\n"
+           "int shaderlab_loop_ticks = 0;\n"
+           "bool shaderlab_loop_tick() {\n"
+           "    shaderlab_loop_ticks += 1;\n"
+           "    if (shaderlab_loop_ticks <= " +
+           limit +
+           ") return true;\n"
+           "    if (shaderlab_loop_ticks == " +
+           limit + " + 1) atomicAdd(shaderlab_loop_overruns[" + std::to_string(stage == 0 ? 0 : 1) +
+           "], 1u);\n"
+           "    return false;\n"
+           "}\n";
+}
+
+namespace {
+
+bool isIdentifierChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// Index just past the comment starting at `p` (`p` itself when none starts there).
+std::size_t skipComment(const std::string& t, std::size_t p) {
+    if (t.compare(p, 2, "//") == 0) {
+        const std::size_t end = t.find('\n', p);
+        return end == std::string::npos ? t.size() : end;
+    }
+    if (t.compare(p, 2, "/*") == 0) {
+        const std::size_t end = t.find("*/", p + 2);
+        return end == std::string::npos ? t.size() : end + 2;
+    }
+    return p;
+}
+
+// From just inside an opening bracket: the index of the `stop` character (or of the closing
+// bracket when `stop` is 0) at the same depth, or npos.
+std::size_t findAtDepth(const std::string& t, std::size_t p, char stop) {
+    int depth = 0;
+    while (p < t.size()) {
+        const std::size_t after = skipComment(t, p);
+        if (after != p) {
+            p = after;
+            continue;
+        }
+        const char c = t[p];
+        if (c == '(' || c == '[' || c == '{') {
+            ++depth;
+        } else if (c == ')' || c == ']' || c == '}') {
+            if (depth == 0) return stop == 0 && c == ')' ? p : std::string::npos;
+            --depth;
+        } else if (depth == 0 && stop != 0 && c == stop) {
+            return p;
+        }
+        ++p;
+    }
+    return std::string::npos;
+}
+
+}  // namespace
+
+std::string guardLoops(const std::string& prepared) {
+    static const std::string tick = "shaderlab_loop_tick()";
+    std::string out;
+    out.reserve(prepared.size() + 256);
+    std::size_t p = 0, copied = 0;
+    while (p < prepared.size()) {
+        const std::size_t after = skipComment(prepared, p);
+        if (after != p) {
+            p = after;
+            continue;
+        }
+        if (!isIdentifierChar(prepared[p])) {
+            ++p;
+            continue;
+        }
+        std::size_t end = p;
+        while (end < prepared.size() && isIdentifierChar(prepared[end])) ++end;
+        const std::string word = prepared.substr(p, end - p);
+        std::size_t open = end;
+        while (open < prepared.size() && std::isspace(static_cast<unsigned char>(prepared[open]))) ++open;
+        if ((word != "for" && word != "while") || open >= prepared.size() || prepared[open] != '(') {
+            p = end;
+            continue;
+        }
+        std::size_t cond_begin = open + 1, cond_end = std::string::npos;
+        if (word == "while") {
+            cond_end = findAtDepth(prepared, cond_begin, 0);
+        } else {
+            const std::size_t first = findAtDepth(prepared, open + 1, ';');
+            if (first != std::string::npos) {
+                cond_begin = first + 1;
+                cond_end = findAtDepth(prepared, cond_begin, ';');
+            }
+        }
+        if (cond_end == std::string::npos) {  // not a loop we understand: the driver will say why
+            p = end;
+            continue;
+        }
+        const std::string cond = prepared.substr(cond_begin, cond_end - cond_begin);
+        const bool empty = cond.find_first_not_of(" \t\r\n") == std::string::npos;
+        out.append(prepared, copied, cond_begin - copied);
+        out += empty ? " " + tick + " " : tick + " && (" + cond + ")";
+        copied = p = cond_end;
+    }
+    out.append(prepared, copied, std::string::npos);
     return out;
 }
 
@@ -232,7 +376,7 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<s
             const Diagnostic* prev = out.empty() ? nullptr : &out.back();
             if (m[5].length() >= 2 && prev && prev->file == d.file && prev->line == d.line &&
                 prev->column == d.column && prev->severity == d.severity) {
-                out.back().message += "\n" + d.message;
+                if (out.back().message.size() < kMaxMessage) out.back().message += "\n" + d.message;
                 continue;
             }
         } else if (std::regex_match(line, m, nvidia)) {
@@ -248,7 +392,7 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<s
         } else {
             // A continuation of the previous message, or a line without a position.
             if (!out.empty() && (raw.rfind(' ', 0) == 0 || raw.rfind('\t', 0) == 0)) {
-                out.back().message += "\n" + line;
+                if (out.back().message.size() < kMaxMessage) out.back().message += "\n" + line;
                 continue;
             }
             d.severity = line.find("warning") != std::string::npos ? "warning" : "error";
@@ -272,6 +416,7 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
         release();
         program_ = other.program_;
         other.program_ = 0;
+        loop_guarded_ = other.loop_guarded_;
         compiled_ = other.compiled_;
         linked_ = other.linked_;
         outputs_known_ = other.outputs_known_;
@@ -298,9 +443,59 @@ bool ShaderProgram::build(const std::string& vertex_file, const std::string& ver
     return build(StageSource{vertex_file, vertex_text, {}}, StageSource{fragment_file, fragment_text, {}});
 }
 
+// Compiles and links the guarded copy of a program that built; 0 when it does not build.
+unsigned ShaderProgram::guardedProgram(const StageSource& vertex, const StageSource& fragment,
+                                       const std::vector<std::string>& attachments) const {
+    GLuint shaders[2] = {0, 0};
+    const StageSource* sources[2] = {&vertex, &fragment};
+    bool ok = true;
+    for (int k = 0; k < 2 && ok; ++k) {
+        const PreparedSource src = prepareSource(sources[k]->text, loopGuardPrelude(k) + defaultPrelude(),
+                                                 sources[k]->file, sources[k]->includes);
+        const std::string text = guardLoops(src.text);
+        shaders[k] = glCreateShader(k == 0 ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER);
+        const char* ptr = text.c_str();
+        const GLint length = static_cast<GLint>(text.size());
+        glShaderSource(shaders[k], 1, &ptr, &length);
+        glCompileShader(shaders[k]);
+        GLint compiled = GL_FALSE;
+        glGetShaderiv(shaders[k], GL_COMPILE_STATUS, &compiled);
+        ok = compiled == GL_TRUE && !src.rejected;
+    }
+    GLuint program = 0;
+    if (ok) {
+        program = glCreateProgram();
+        for (GLuint sh : shaders) glAttachShader(program, sh);
+        glBindAttribLocation(program, 0, "a_position");
+        glBindAttribLocation(program, 1, "a_normal");
+        glBindAttribLocation(program, 2, "a_texcoord");
+        for (std::size_t i = 0; i < attachments.size(); ++i) {
+            glBindFragDataLocation(program, static_cast<GLuint>(i), ("o_" + attachments[i]).c_str());
+            glBindFragDataLocation(program, static_cast<GLuint>(i), attachments[i].c_str());
+        }
+        glLinkProgram(program);
+        for (GLuint sh : shaders) glDetachShader(program, sh);
+        GLint linked = GL_FALSE;
+        glGetProgramiv(program, GL_LINK_STATUS, &linked);
+        const GLuint block = linked == GL_TRUE ? glGetProgramResourceIndex(program, GL_SHADER_STORAGE_BLOCK,
+                                                                           "ShaderlabLoopGuard")
+                                               : GL_INVALID_INDEX;
+        if (block == GL_INVALID_INDEX) {
+            glDeleteProgram(program);
+            program = 0;
+        } else {
+            glShaderStorageBlockBinding(program, block, kLoopGuardBinding);
+        }
+    }
+    for (GLuint sh : shaders)
+        if (sh) glDeleteShader(sh);
+    return program;
+}
+
 bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment,
-                          const std::vector<std::string>& attachments) {
+                          const std::vector<std::string>& attachments, bool guard_loops) {
     release();
+    loop_guarded_ = false;
     stages_.clear();
     diagnostics_.clear();
     uniform_index_.clear();
@@ -313,6 +508,7 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
     // Each stage's log is explained once both are compiled: a hint may name the other stage.
     StageText texts[2];
     std::vector<Diagnostic> parsed[2], include_errors[2];
+    std::size_t dropped[2] = {0, 0};
     auto compile = [&](GLenum kind, const StageSource& source) -> GLuint {
         const int k = kind == GL_VERTEX_SHADER ? 0 : 1;
         StageLog log;
@@ -323,25 +519,38 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
         texts[k] = StageText{log.stage, src.files, src.texts};
         const auto t0 = std::chrono::steady_clock::now();
         const GLuint shader = glCreateShader(kind);
-        const char* ptr = src.text.c_str();
-        const GLint length = static_cast<GLint>(src.text.size());
-        glShaderSource(shader, 1, &ptr, &length);
-        glCompileShader(shader);
         GLint ok = GL_FALSE;
-        glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+        if (!src.rejected) {
+            const char* ptr = src.text.c_str();
+            const GLint length = static_cast<GLint>(src.text.size());
+            glShaderSource(shader, 1, &ptr, &length);
+            glCompileShader(shader);
+            glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+        }
         log.compile_us =
             std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
         GLint len = 0;
-        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+        if (!src.rejected) glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
         if (len > 1) {
             std::string buf(static_cast<std::size_t>(len), '\0');
             glGetShaderInfoLog(shader, len, nullptr, buf.data());
             buf.resize(std::strlen(buf.c_str()));
+            // A student can make the driver write megabytes (thousands of errors): the log is cut.
+            if (buf.size() > kMaxLogBytes) {
+                const std::size_t cut = buf.rfind('\n', kMaxLogBytes);
+                buf.resize(cut == std::string::npos ? kMaxLogBytes : cut + 1);
+            }
             log.info_log = buf;
         }
         include_errors[k] = src.errors;
         log.compiled = ok == GL_TRUE && src.errors.empty();
         parsed[k] = parseInfoLog(log.info_log, src.files);
+        // Explaining costs time per message (a closest-name search over the file): a flood is cut
+        // before, and a note says how much was left out.
+        if (parsed[k].size() > kMaxExplained) {
+            dropped[k] = parsed[k].size() - kMaxExplained;
+            parsed[k].resize(kMaxExplained);
+        }
         const bool compiled = log.compiled;
         stages_.push_back(std::move(log));
         if (!compiled) {
@@ -357,6 +566,12 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
         for (const Diagnostic& d : include_errors[k]) diagnostics_.push_back(d);
         for (Diagnostic& d : explainCompileLog(parsed[k], texts[k], &texts[1 - k]))
             diagnostics_.push_back(std::move(d));
+        if (dropped[k] > 0)
+            diagnostics_.push_back({texts[k].files.empty() ? std::string() : texts[k].files.front(), 0, 0,
+                                    "note",
+                                    "the compiler reported " + std::to_string(dropped[k]) +
+                                        " more messages for this file; they are left out (fix the first "
+                                        "ones and compile again)"});
         // Our own warnings only for a stage that compiled: its errors come first.
         if (stages_[static_cast<std::size_t>(k)].compiled)
             for (Diagnostic& d : scanStage(texts[k])) diagnostics_.push_back(std::move(d));
@@ -398,6 +613,14 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
     }
     linked_ = ok == GL_TRUE;
     if (!linked_) return false;
+    // Drawn with the guarded copy; every query below is of the program that draws.
+    if (guard_loops && GLAD_GL_VERSION_4_3) {
+        if (const GLuint guarded = guardedProgram(vertex, fragment, attachments)) {
+            glDeleteProgram(program_);
+            program_ = guarded;
+            loop_guarded_ = true;
+        }
+    }
 
     GLint count = 0;
     glGetProgramiv(program_, GL_ACTIVE_UNIFORMS, &count);

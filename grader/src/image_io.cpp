@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "grader/atomic_file.h"
 #include "grader/image.h"
 
 namespace grader {
@@ -49,17 +50,20 @@ bool writePng(const Image& image, const std::string& path, std::string* error) {
         v = std::clamp(v, 0.0f, 1.0f);
         bytes[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
     }
-    std::FILE* file = std::fopen(path.c_str(), "wb");
-    if (!file) {
-        if (error) *error = path + ": cannot write PNG (folder missing or not writable?)";
+    // Beside the final name, then renamed: a killed grader leaves the old picture or the new one,
+    // never half of one, and a link planted at the name is refused (atomic_file.h).
+    AtomicFile output;
+    std::string open_error;
+    if (!output.open(path, &open_error)) {
+        if (error) *error = open_error + ": cannot write PNG";
         return false;
     }
+    std::FILE* file = output.stream();
     PngWriteState state;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(state.jump)) {
         png_destroy_write_struct(&png, &info);
-        std::fclose(file);
         if (error)
             *error = path + ": cannot write PNG (" +
                      (state.message.empty() ? "out of memory" : state.message) + ")";
@@ -79,8 +83,11 @@ bool writePng(const Image& image, const std::string& path, std::string* error) {
         png_write_row(png, bytes.data() + stride * static_cast<std::size_t>(y));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    if (std::fclose(file) != 0) {
-        if (error) *error = path + ": cannot write PNG (disk full?)";
+    // Not fsync'ed: a report writes hundreds of pictures, and the rename alone keeps them whole
+    // when the process dies; the reports that name them are synced.
+    std::string commit_error;
+    if (!output.commit(&commit_error, false)) {
+        if (error) *error = commit_error + ": cannot write PNG";
         return false;
     }
     return true;

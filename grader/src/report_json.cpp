@@ -192,6 +192,7 @@ std::string reportToJson(const Report& report) {
                         {"goals", goals},
                         {"scenes", scenes},
                         {"wall_ms", number(lab.wall_ms)}});
+        if (!lab.limit.empty()) labs.back()["limit"] = lab.limit;
     }
     json root = {{"schema_version", kReportSchemaVersion},
                  {"tool", "shaderlab"},
@@ -235,6 +236,7 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
         lab.message = l.value("message", "");
         lab.reference_source = l.value("reference_source", "");
         lab.wall_ms = fromNumber(l.value("wall_ms", json()), 0.0);
+        lab.limit = l.value("limit", "");
         for (const json& d : l.value("diagnostics", json::array()))
             lab.diagnostics.push_back({d.value("file", ""), d.value("line", 0), d.value("column", 0),
                                        d.value("severity", ""), d.value("message", ""),

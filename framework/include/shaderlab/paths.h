@@ -11,6 +11,9 @@ namespace shaderlab {
 
 struct PathResult {
     bool ok = false;
+    // !ok because the file is not there for the submission: absent, a broken link, or a link or
+    // `..` leading outside the root (not: a folder or other non-file in its place).
+    bool missing = false;
     std::string path;   // absolute, canonical when ok
     std::string error;  // "<root>/<relative>: <problem>" when !ok
 };
@@ -22,6 +25,7 @@ PathResult resolveInside(const std::string& root, const std::string& relative);
 // Reads a whole file resolved with resolveInside, refusing files larger than `max_bytes`.
 struct FileText {
     bool ok = false;
+    bool missing = false;  // !ok as PathResult::missing, or no such file (not: too large, not a file)
     std::string text;
     std::string path;
     std::string error;

@@ -48,6 +48,9 @@ struct LabRender {
     std::string message;                  // one line a person reads first
     std::vector<Diagnostic> diagnostics;  // compile/link logs and uniform warnings
     std::vector<SceneRender> scenes;
+    // A loop ran past the loop guard's limit (ShaderProgram, "loop guard"): the render stopped
+    // with RenderError and `message` says where. The grader reports it as a timeout.
+    bool endless_loop = false;
 };
 
 struct RenderOptions {

@@ -42,6 +42,9 @@ struct PreparedSource {
     std::vector<std::string> files;  // by source-string number: [0] the file itself, then includes
     std::vector<std::string> texts;  // their text, by the same numbers
     std::vector<Diagnostic> errors;  // includes that could not be read (or nest too deep)
+    // Not text a driver should see (a NUL byte, which would silently end the source there):
+    // `errors` says where, and the stage is not compiled.
+    bool rejected = false;
 };
 
 // Inserts the prelude after the `#version` directive (keeping the student's version) and a
@@ -56,6 +59,24 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
 // 0 so nothing the driver said is lost; Mesa's indented candidate lines join the message above.
 std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<std::string>& files);
 std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& file);
+
+// The loop guard. llvmpipe stops any loop after 65,535 iterations, so an endless loop does not
+// hang: it ends with whatever it computed, and a loop whose result is unused is removed. Either
+// way a shader that never terminates on a GPU could pass. A guarded program counts, per shader
+// invocation, the iterations of all its loops (a call in every `for` and `while` condition);
+// past kLoopGuardLimit every loop ends at once and the invocation adds 1 to its stage's counter
+// in a storage buffer at binding kLoopGuardBinding (uint[2]: vertex, fragment), which the
+// renderer reads after each pass. The limit sits below llvmpipe's own so that it is always met
+// first; the labs' loops stay far below it (the irradiance convolution of lab 07, the largest,
+// runs 6 x 16 x 16 + 6 x 16 + 6 = 1,638).
+constexpr int kLoopGuardLimit = 60000;
+constexpr unsigned kLoopGuardBinding = 7;
+// `prepared` (a prepareSource() text) with a guard call in the condition of every `for` and
+// `while` (`do ... while` included) outside comments: `while (c)` becomes
+// `while (shaderlab_loop_tick() && (c))`. Lines and the text outside the conditions are kept.
+std::string guardLoops(const std::string& prepared);
+// The declarations a guarded stage needs (stage 0: vertex, 1: fragment), for the prelude.
+std::string loopGuardPrelude(int stage);
 
 struct StageLog {
     std::string file;
@@ -95,11 +116,16 @@ class ShaderProgram {
     // Builds from two sources. Fragment outputs named `o_<attachment>` or `<attachment>` are bound
     // to that attachment's location before linking. Returns false on a compile or link error;
     // logs and diagnostics are filled either way (warnings too).
+    // With `guard_loops`, the program that is kept for drawing is a second build of the same
+    // sources with every loop guarded (guardLoops()); the diagnostics come from the plain build.
+    // When the guarded build fails (a very old #version, an #extension of the student's), the
+    // plain program is kept and loopGuarded() is false.
     bool build(const StageSource& vertex, const StageSource& fragment,
-               const std::vector<std::string>& attachments = {"color"});
+               const std::vector<std::string>& attachments = {"color"}, bool guard_loops = false);
     bool build(const std::string& vertex_file, const std::string& vertex_text,
                const std::string& fragment_file, const std::string& fragment_text);
 
+    bool loopGuarded() const { return loop_guarded_; }
     bool compiled() const { return compiled_; }
     bool linked() const { return linked_; }
     unsigned id() const { return program_; }
@@ -122,8 +148,10 @@ class ShaderProgram {
   private:
     void release();
     void snapshotDefaults();
+    unsigned guardedProgram(const StageSource& vertex, const StageSource& fragment,
+                            const std::vector<std::string>& attachments) const;
     unsigned program_ = 0;
-    bool compiled_ = false, linked_ = false, outputs_known_ = false;
+    bool compiled_ = false, linked_ = false, outputs_known_ = false, loop_guarded_ = false;
     std::vector<StageLog> stages_;
     std::string link_log_;
     std::vector<Diagnostic> diagnostics_;

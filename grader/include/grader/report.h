@@ -119,6 +119,9 @@ struct ReportLab {
     std::string status;              // one of the closed set above
     double score = 0.0, max_score = 0.0;
     std::string message;
+    // Which limit stopped the render (timeout or crashed): "compile_timeout", "draw_timeout" or
+    // "memory", or "loop" (a loop ran past the loop guard); empty otherwise.
+    std::string limit;
     std::string reference_source;  // "reference_solutions" or "goldens"
     std::vector<ReportDiagnostic> diagnostics;
     std::vector<ReportGoal> goals;  // empty when the lab did not render
