@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grader/image.h"
+#include "shaderlab/camera.h"
 #include "shaderlab/lab_spec.h"
 #include "shaderlab/scene.h"
 #include "shaderlab/shader_program.h"
@@ -56,6 +57,9 @@ struct RenderOptions {
     // The submission folder: student files must resolve inside it (so a lab folder that is a
     // symlink out of the submission is refused). Empty: the shader folder itself.
     std::string containment_root;
+    // Turns every scene's camera about its target (the student viewer's orbit and zoom); the
+    // lights stay where the graded view puts them. Identity: the graded view.
+    CameraOrbit orbit;
     // Told what the renderer is about to do, one line each: "compile <vertex> <fragment>",
     // "scene <scene>", "pass <scene> <pass>" (a repeated pass on its first run only) and
     // "done <scene> <milliseconds>". May be empty.
