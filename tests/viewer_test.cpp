@@ -158,7 +158,7 @@ class XvfbDisplay {
     std::string name_, why_not_;
 };
 
-struct Run {
+struct CommandRun {
     int exit_code = -1;
     std::string output;
 };
@@ -167,8 +167,8 @@ std::string viewCommand(const std::string& args) {
     return "DISPLAY=" + XvfbDisplay::get().name() + " " + std::string(SHADERLAB_CLI) + " " + args + " 2>&1";
 }
 
-Run runCommand(const std::string& cmd) {
-    Run r;
+CommandRun runCommand(const std::string& cmd) {
+    CommandRun r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
     char buf[4096];
@@ -194,9 +194,9 @@ class Background {
         }
         return false;
     }
-    Run finish() {
+    CommandRun finish() {
         waitFor("\x01never");
-        Run r;
+        CommandRun r;
         r.output = output_;
         if (pipe_) {
             const int status = pclose(pipe_);
@@ -235,12 +235,12 @@ class ViewerWindow : public ::testing::Test {
 TEST_F(ViewerWindow, GradedViewMatchesTheHeadlessRender) {
     const fs::path out = scratch("graded");
     const std::string ref = (kSource / "reference_solutions").string();
-    const Run view =
+    const CommandRun view =
         runCommand(viewCommand("view 01-phong --submission " + ref + labs() +
                                " --scene torus --frames 3 --screenshot " + (out / "view.png").string()));
     ASSERT_EQ(view.exit_code, 0) << view.output;
-    const Run render = runCommand(std::string(SHADERLAB_CLI) + " render " + ref + " --lab 01-phong" + labs() +
-                                  " --out " + (out / "headless").string() + " 2>&1");
+    const CommandRun render = runCommand(std::string(SHADERLAB_CLI) + " render " + ref + " --lab 01-phong" +
+                                         labs() + " --out " + (out / "headless").string() + " 2>&1");
     ASSERT_EQ(render.exit_code, 0) << render.output;
 
     grader::Image shown, headless;
@@ -271,7 +271,7 @@ TEST_F(ViewerWindow, BrokenShaderShowsTheErrorAndDoesNotCrash) {
                  "vec3 n = normalize(v_world_normal)");
     writeFile(sub / "01-phong" / "phong.frag", frag);
     const fs::path out = scratch("broken_out");
-    const Run view =
+    const CommandRun view =
         runCommand(viewCommand("view 01-phong --submission " + sub.string() + labs() +
                                " --frames 3 --screenshot-window " + (out / "window.png").string()));
     EXPECT_EQ(view.exit_code, 0) << view.output;
@@ -306,7 +306,7 @@ TEST_F(ViewerWindow, EditingTheShaderChangesTheNextPicture) {
                  "o_color = vec4(1.0, 0.0, 0.0, 1.0);");
     writeFile(sub / "01-phong" / "phong.frag.new", frag);
     fs::rename(sub / "01-phong" / "phong.frag.new", sub / "01-phong" / "phong.frag");
-    const Run r = view.finish();
+    const CommandRun r = view.finish();
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("after the save"), std::string::npos) << r.output;
     grader::Image after;
@@ -330,7 +330,7 @@ TEST_F(ViewerWindow, TruncateThenWriteRendersTheWholeFile) {
     { std::ofstream truncate(sub / "01-phong" / "phong.frag", std::ios::trunc); }
     std::this_thread::sleep_for(std::chrono::milliseconds(30));
     writeFile(sub / "01-phong" / "phong.frag", frag);
-    const Run r = view.finish();
+    const CommandRun r = view.finish();
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("after the save"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("does not compile"), std::string::npos) << r.output;
@@ -346,7 +346,7 @@ TEST_F(ViewerWindow, HangingShaderTimesOutAndTheWindowStaysResponsive) {
     frag.replace(at, std::string("o_color = vec4(color, 1.0);").size(),
                  "float k = 0.0; while (k >= 0.0) { k += u_ambient + 1.0; } o_color = vec4(color * k, 1.0);");
     writeFile(sub / "01-phong" / "phong.frag", frag);
-    const Run view = runCommand(
+    const CommandRun view = runCommand(
         viewCommand("view 01-phong --submission " + sub.string() + labs() + " --timeout 1 --frames 5"));
     EXPECT_EQ(view.exit_code, 0) << view.output;
     EXPECT_NE(view.output.find("Timed out: phong.frag"), std::string::npos) << view.output;
@@ -372,7 +372,7 @@ TEST(ViewerWatch, ChecksAgainOnEverySave) {
     ASSERT_NE(at, std::string::npos);
     frag.replace(at, std::string("o_color = vec4(color, 1.0);").size(), "o_color = vec4(color * 0.5, 1.0);");
     writeFile(sub / "01-phong" / "phong.frag", frag);
-    const Run r = watch.finish();
+    const CommandRun r = watch.finish();
     EXPECT_EQ(r.exit_code, 1) << r.output;
     EXPECT_NE(r.output.find("phong.frag changed; checking again"), std::string::npos) << r.output;
     const std::size_t second = r.output.find("checking again");

@@ -64,6 +64,7 @@ int runView(const ViewArgs& args) {
     parseBackend(args.common.backend, &options.backend);
     options.timeout_s = args.timeout_s;
     options.scene = args.scene;
+    options.image = args.image;
     options.view_mode = args.mode;
     options.frames = args.frames;
     options.exit_after_reloads = args.exit_after_reloads;

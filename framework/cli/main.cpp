@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
                          "reference solutions folder (default: reference_solutions beside labs/)");
     view_cmd->add_flag("--no-reference", view.no_reference, "compare with the stored golden images");
     view_cmd->add_option("--scene", view.scene, "scene shown first");
+    view_cmd->add_option("--image", view.image, "image shown first: PASS.ATTACHMENT, e.g. bright.color");
     view_cmd->add_option("--mode", view.mode, "first view")
         ->check(CLI::IsMember({"student", "reference", "diff", "split"}))
         ->capture_default_str();

@@ -1,6 +1,8 @@
 // Polling folder watch; see file_watch.h.
 #include "viewer/file_watch.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -65,9 +67,11 @@ std::map<std::string, FileState> FolderWatch::snapshot() {
         FileState st;
         st.size = it->file_size(ec);
         if (ec) continue;
-        const auto t = it->last_write_time(ec);
-        if (ec) continue;
-        st.mtime_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+        // stat() for the time: file_time_type's epoch is not the Unix one in C++17, and the
+        // viewer compares the save time with the system clock.
+        struct stat info {};
+        if (::stat(it->path().c_str(), &info) != 0) continue;
+        st.mtime_ns = static_cast<std::int64_t>(info.st_mtim.tv_sec) * 1000000000 + info.st_mtim.tv_nsec;
         const std::string rel = fs::relative(it->path(), folder_, ec).generic_string();
         // Hash only what moved since the last look.
         const auto prev = seen_.find(rel);

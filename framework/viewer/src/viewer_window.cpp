@@ -653,7 +653,7 @@ void Viewer::drawControls(float width, float height) {
     ImGui::Begin("controls", nullptr,
                  ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove |
                      ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoBringToFrontOnFocus);
-    ImGui::Text("%s", spec_.title.c_str());
+    ImGui::TextWrapped("%s", spec_.title.c_str());
     ImGui::TextDisabled("%s", (fs::path(opt_.submission_root) / spec_.id).string().c_str());
     ImGui::Separator();
 
@@ -992,6 +992,7 @@ int Viewer::run() {
     for (std::size_t i = 0; i < spec_.scenes.size(); ++i)
         if (spec_.scenes[i].name == opt_.scene) scene_ = static_cast<int>(i);
     mode_ = parseMode(opt_.view_mode);
+    selected_ = opt_.image;
     if (!openWindow()) return 2;
     {
         queue_ = std::make_unique<RenderQueue>(service_, [] { glfwPostEmptyEvent(); });
@@ -1006,9 +1007,9 @@ int Viewer::run() {
         bool screenshot_due = false;
         while (!glfwWindowShouldClose(window_)) {
             // Wait for input, a finished render, or the next look at the files.
-            glfwWaitEventsTimeout(0.03);
+            glfwWaitEventsTimeout(0.02);
             const auto t0 = Clock::now();
-            if (t0 - last_poll_ > std::chrono::milliseconds(40)) {
+            if (t0 - last_poll_ > std::chrono::milliseconds(20)) {
                 last_poll_ = t0;
                 if (watch_->poll()) {
                     ++generation_;
@@ -1038,7 +1039,8 @@ int Viewer::run() {
             glClear(GL_COLOR_BUFFER_BIT);
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-            if (got_first_result_) ++frames_after_first;
+            // Scripts want both pictures: count frames once the reference is in too.
+            if (got_first_result_ && (opt_.reference_root.empty() || reference_)) ++frames_after_first;
             const bool done_frames = opt_.frames > 0 && frames_after_first >= opt_.frames;
             const bool done_reloads =
                 opt_.exit_after_reloads > 0 && reloads_shown_ >= opt_.exit_after_reloads;

@@ -24,7 +24,7 @@ struct FileState {
 class FolderWatch {
   public:
     explicit FolderWatch(std::string folder,
-                         std::chrono::milliseconds settle = std::chrono::milliseconds(100));
+                         std::chrono::milliseconds settle = std::chrono::milliseconds(60));
 
     // Call every few tens of milliseconds. True once for each settled change of contents (a file
     // added, removed, or its bytes changed); touching a file without changing it is no change.

@@ -19,8 +19,10 @@ struct ViewerOptions {
     Backend backend = Backend::OSMesa;
     double timeout_s = 5.0;  // one render of one scene
     std::string scene;       // first scene shown (empty: the lab's first)
-    // For scripts and tests: exit after this many frames once the first picture (or error) is
-    // shown, or once this many pictures made after a file change are shown (0: neither).
+    std::string image;       // first image shown, "pass.attachment" (empty: the final graded image)
+    // For scripts and tests: exit after this many frames once the first picture (or error) and
+    // the reference (when one is rendered) are in, or once this many pictures (or errors) made
+    // after a file change are shown (0: neither).
     int frames = 0;
     int exit_after_reloads = 0;
     std::string screenshot;         // at exit: the picture as the window shows it, one pixel per image pixel
