@@ -12,11 +12,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <glm/glm.hpp>
 #include <string>
 #include <thread>
 
 #include "grader/image.h"
 #include "grader/scoring.h"
+#include "shaderlab/camera.h"
 #include "shaderlab/grading.h"
 #include "shaderlab/lab_spec.h"
 #include "viewer/file_watch.h"
@@ -96,6 +98,39 @@ TEST(FolderWatch, TouchingWithoutChangingIsNoChange) {
     fs::remove(dir / "b.frag");
     ASSERT_TRUE(changeSeen(watch));
     EXPECT_EQ(watch.changedFiles(), std::vector<std::string>{"b.frag"});
+}
+
+// The viewer's orbit (RenderOptions::orbit): about the target, distance kept, zoom divides it,
+// pitch stops short of the pole.
+TEST(CameraOrbit, TurnsAboutTheTargetAndZooms) {
+    shaderlab::Scene scene;
+    scene.bounds_min = glm::vec3(-1.0f);
+    scene.bounds_max = glm::vec3(1.0f);
+    shaderlab::Camera base;
+    base.position = glm::vec3(0.0f, 0.0f, 4.0f);
+    base.target = glm::vec3(0.0f);
+
+    shaderlab::Camera c = base;
+    shaderlab::orbitCamera(scene, {}, &c);
+    EXPECT_EQ(c.position, base.position) << "the identity leaves the graded view alone";
+
+    c = base;
+    shaderlab::orbitCamera(scene, {90.0f, 0.0f, 1.0f}, &c);
+    EXPECT_NEAR(glm::length(c.position), 4.0f, 1e-4f);
+    EXPECT_NEAR(c.position.x, 4.0f, 1e-4f) << "yaw turns about world +y";
+    EXPECT_NEAR(c.position.y, 0.0f, 1e-4f);
+
+    c = base;
+    shaderlab::orbitCamera(scene, {0.0f, 30.0f, 2.0f}, &c);
+    EXPECT_NEAR(glm::length(c.position), 2.0f, 1e-4f) << "zoom 2 halves the distance";
+    EXPECT_NEAR(c.position.y, 2.0f * std::sin(glm::radians(30.0f)), 1e-4f) << "pitch raises the camera";
+    EXPECT_LT(c.z_near, 1.0f);
+    EXPECT_GT(c.z_far, 3.0f) << "near and far refitted to the scene";
+
+    c = base;
+    shaderlab::orbitCamera(scene, {0.0f, 170.0f, 1.0f}, &c);
+    EXPECT_LT(c.position.y / glm::length(c.position), std::sin(glm::radians(85.5f)))
+        << "stops short of the pole";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -259,6 +294,59 @@ TEST_F(ViewerWindow, GradedViewMatchesTheHeadlessRender) {
     EXPECT_GT(v.frame.psnr_db, 45.0) << "an 8-bit picture shown 1:1 should be nearly exact";
     // And the window says the scene passes.
     EXPECT_NE(view.output.find("scene torus passes"), std::string::npos) << view.output;
+}
+
+// Stepping through passes: an intermediate image of a multi-pass lab, as the window shows it, is
+// the image the headless renderer reads back for that pass.
+TEST_F(ViewerWindow, IntermediatePassMatchesTheHeadlessRender) {
+    const fs::path out = scratch("pass");
+    const std::string ref = (kSource / "reference_solutions").string();
+    const CommandRun view = runCommand(viewCommand(
+        "view 06-bloom --submission " + ref + labs() +
+        " --scene cube_white --image bright.color --frames 2 --screenshot " + (out / "view.png").string()));
+    ASSERT_EQ(view.exit_code, 0) << view.output;
+    const CommandRun render =
+        runCommand(std::string(SHADERLAB_CLI) + " render " + ref + " --lab 06-bloom" + labs() +
+                   " --all-passes --out " + (out / "headless").string() + " 2>&1");
+    ASSERT_EQ(render.exit_code, 0) << render.output;
+    grader::Image shown, bright, final_image;
+    std::string err;
+    ASSERT_TRUE(grader::readPng((out / "view.png").string(), &shown, &err)) << err << "\n" << view.output;
+    ASSERT_TRUE(
+        grader::readPng((out / "headless" / "06-bloom" / "cube_white.bright.png").string(), &bright, &err));
+    ASSERT_TRUE(
+        grader::readPng((out / "headless" / "06-bloom" / "cube_white.png").string(), &final_image, &err));
+    ASSERT_EQ(shown.width, bright.width);
+    const grader::ImageVerdict v = grader::judgeImage(bright, {}, shown, {}, grader::Thresholds());
+    EXPECT_TRUE(v.passed) << "PSNR " << v.frame.psnr_db;
+    const grader::ImageVerdict other = grader::judgeImage(final_image, {}, shown, {}, grader::Thresholds());
+    EXPECT_FALSE(other.passed) << "the bright pass must not look like the final image";
+}
+
+// A turned view is rendered (it differs from the graded view) and is never taken for a grade; with
+// only the stored goldens there is no reference for it, and the window says so.
+TEST_F(ViewerWindow, TurnedViewRendersAndIsNotGraded) {
+    const fs::path out = scratch("turned");
+    const std::string ref = (kSource / "reference_solutions").string();
+    const std::string common =
+        "view 01-phong --submission " + ref + labs() + " --no-reference --scene torus --frames 2";
+    const CommandRun graded =
+        runCommand(viewCommand(common + " --screenshot " + (out / "graded.png").string()));
+    ASSERT_EQ(graded.exit_code, 0) << graded.output;
+    EXPECT_NE(graded.output.find("scene torus passes"), std::string::npos) << "graded against the goldens\n"
+                                                                           << graded.output;
+    const CommandRun turned =
+        runCommand(viewCommand(common + " --orbit 60 20 1.2 --screenshot " + (out / "turned.png").string() +
+                               " --screenshot-window " + (out / "window.png").string()));
+    ASSERT_EQ(turned.exit_code, 0) << turned.output;
+    EXPECT_EQ(turned.output.find("scene torus passes"), std::string::npos) << turned.output;
+    grader::Image a, b;
+    std::string err;
+    ASSERT_TRUE(grader::readPng((out / "graded.png").string(), &a, &err)) << err;
+    ASSERT_TRUE(grader::readPng((out / "turned.png").string(), &b, &err)) << err;
+    ASSERT_EQ(a.width, b.width);
+    const grader::ImageVerdict v = grader::judgeImage(a, {}, b, {}, grader::Thresholds());
+    EXPECT_FALSE(v.passed) << "the turned view looks like the graded one";
 }
 
 // A shader that does not compile: the window stays up, says where, and the terminal says so too.

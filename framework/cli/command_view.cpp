@@ -65,6 +65,11 @@ int runView(const ViewArgs& args) {
     options.timeout_s = args.timeout_s;
     options.scene = args.scene;
     options.image = args.image;
+    if (args.orbit.size() == 3) {
+        options.orbit.yaw_deg = args.orbit[0];
+        options.orbit.pitch_deg = args.orbit[1];
+        options.orbit.zoom = args.orbit[2];
+    }
     options.view_mode = args.mode;
     options.frames = args.frames;
     options.exit_after_reloads = args.exit_after_reloads;

@@ -67,7 +67,8 @@ struct ViewArgs {
     bool no_reference = false;   // compare with the stored golden images
     double timeout_s = 5.0;      // one scene's render
     std::string scene;
-    std::string image;  // pass.attachment shown first
+    std::string image;         // pass.attachment shown first
+    std::vector<float> orbit;  // yaw, pitch (degrees), zoom
     std::string mode = "student";
     int frames = 0;
     int exit_after_reloads = 0;

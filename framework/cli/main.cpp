@@ -78,6 +78,10 @@ int main(int argc, char** argv) {
     view_cmd->add_flag("--no-reference", view.no_reference, "compare with the stored golden images");
     view_cmd->add_option("--scene", view.scene, "scene shown first");
     view_cmd->add_option("--image", view.image, "image shown first: PASS.ATTACHMENT, e.g. bright.color");
+    view_cmd
+        ->add_option("--orbit", view.orbit,
+                     "start turned from the graded view: YAW PITCH (degrees) ZOOM (R in the window resets)")
+        ->expected(3);
     view_cmd->add_option("--mode", view.mode, "first view")
         ->check(CLI::IsMember({"student", "reference", "diff", "split"}))
         ->capture_default_str();

@@ -235,6 +235,9 @@ struct Shown {
     std::string note;                // why there is nothing to show
 };
 
+// Room at the bottom of the controls for the list of keys.
+constexpr float kKeysHeight = 172.0f;
+
 std::string imageKey(const PassImage& p) { return p.pass + "." + p.attachment; }
 
 class Viewer {
@@ -298,6 +301,7 @@ class Viewer {
 
     // Derived, recomputed when `dirty_` is set.
     bool dirty_ = true;
+    bool judge_dirty_ = false;  // new pictures: judge the scene again
     Shown shown_;
     Texture tex_student_, tex_reference_, tex_diff_;
     std::optional<grader::ImageVerdict> shown_verdict_;
@@ -394,7 +398,7 @@ void Viewer::onStudent(const Finished& f) {
         error_title_.clear();
         error_text_.clear();
         last_printed_error_.clear();
-        dirty_ = true;
+        dirty_ = judge_dirty_ = true;
         char line[256];
         std::snprintf(line, sizeof line, "scene %s rendered in %.0f ms", student_scene_.c_str(), r.wall_ms);
         status_line_ = line;
@@ -450,7 +454,7 @@ void Viewer::takeResults() {
             reference_ = std::move(f.result);
             reference_scene_ = f.job.request.scene;
             reference_orbit_ = f.job.request.orbit;
-            dirty_ = true;
+            dirty_ = judge_dirty_ = true;
         }
     }
 }
@@ -558,7 +562,6 @@ void Viewer::refreshShown() {
         tex_diff_.upload(
             grader::diffHeatmap(shown_verdict_->flip_map, shown_.student->width, shown_.student->height, hc));
     }
-    judgeScene();
 }
 
 // The verdict grading would give this scene: every graded image against its reference.
@@ -583,11 +586,10 @@ void Viewer::judgeScene() {
             pass->compare == CompareMode::Hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
         judged_.push_back(std::move(j));
     }
-    if (judged_.empty()) return;
+    if (judged_.empty() || !judged_graded_view_) return;
     bool passed = true;
     for (const Judged& j : judged_) passed = passed && j.verdict.passed;
-    std::printf("view: scene %s %s%s\n", student_scene_.c_str(), passed ? "passes" : "FAILS",
-                judged_graded_view_ ? "" : " (in this turned view; grading uses the graded view)");
+    std::printf("view: scene %s %s\n", student_scene_.c_str(), passed ? "passes" : "FAILS");
     for (const Judged& j : judged_)
         for (const std::string& reason : j.verdict.reasons)
             std::printf("      %s: %s\n", j.label.c_str(), reason.c_str());
@@ -735,14 +737,22 @@ void Viewer::drawControls(float width, float height) {
         ImGui::TextColored(passed ? ImVec4(0.3f, 0.9f, 0.3f, 1) : ImVec4(1, 0.35f, 0.3f, 1), "scene %s: %s",
                            student_scene_.c_str(), passed ? "PASS" : "FAIL");
         if (!judged_graded_view_) ImGui::TextDisabled("(this turned view is not graded)");
+        ImGui::BeginChild("verdict", ImVec2(0, -kKeysHeight), false);
         for (const Judged& j : judged_) {
             const grader::MetricSet& m = j.verdict.covered;
-            ImGui::Text("%s %s", j.verdict.passed ? "ok  " : "FAIL", j.label.c_str());
-            ImGui::Text("  PSNR %s  SSIM %.4f", formatPsnr(m.psnr_db).c_str(), m.ssim);
-            ImGui::Text("  FLIP %.4f  mismatch %.2f%%", m.flip_mean, 100.0 * m.mismatch_fraction);
+            ImGui::TextColored(j.verdict.passed ? ImVec4(0.3f, 0.9f, 0.3f, 1) : ImVec4(1, 0.35f, 0.3f, 1),
+                               "%s", j.verdict.passed ? "ok  " : "FAIL");
+            ImGui::SameLine();
+            ImGui::Text("%s", j.label.c_str());
+            char ssim[16] = "n/a";
+            if (m.ssim_defined) std::snprintf(ssim, sizeof ssim, "%.3f", m.ssim);
+            ImGui::TextDisabled("  PSNR %s  SSIM %s  FLIP %.3f", formatPsnr(m.psnr_db).c_str(), ssim,
+                                m.flip_mean);
+            ImGui::TextDisabled("  mismatch %.2f%%", 100.0 * m.mismatch_fraction);
             if (j.verdict.nan_count) ImGui::Text("  %zu NaN pixels", j.verdict.nan_count);
             for (const std::string& r : j.verdict.reasons) ImGui::TextWrapped("  %s", r.c_str());
         }
+        ImGui::EndChild();
     } else if (!opt_.reference_root.empty() && !reference_error_.empty()) {
         ImGui::TextWrapped("%s", reference_error_.c_str());
     } else if (opt_.reference_root.empty() && orbit_.any()) {
@@ -753,10 +763,10 @@ void Viewer::drawControls(float width, float height) {
     } else {
         ImGui::TextDisabled("verdict: waiting for both pictures");
     }
+    if (judged_.empty()) ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), height - kKeysHeight));
+    ImGui::Separator();
     ImGui::TextDisabled("reference: %s",
                         opt_.reference_root.empty() ? "stored golden images" : "reference solution");
-
-    ImGui::Separator();
     ImGui::TextDisabled("keys");
     ImGui::TextDisabled("1 2 3 4   student, reference, diff, split");
     ImGui::TextDisabled("[ ]       move the split");
@@ -782,7 +792,7 @@ void Viewer::drawPicture(float x, float width, float height) {
         ImGui::TextDisabled("%s", status_line_.empty() ? "starting" : status_line_.c_str());
     ImGui::Text("%s", shown_.label.c_str());
 
-    const float error_h = error_title_.empty() ? 0.0f : std::min(260.0f, height * 0.4f);
+    const float error_h = error_title_.empty() ? 0.0f : std::min(200.0f, height * 0.35f);
     const float inspector_h = 80.0f;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const float area_w = avail.x, area_h = avail.y - error_h - inspector_h;
@@ -993,6 +1003,7 @@ int Viewer::run() {
         if (spec_.scenes[i].name == opt_.scene) scene_ = static_cast<int>(i);
     mode_ = parseMode(opt_.view_mode);
     selected_ = opt_.image;
+    orbit_ = opt_.orbit;
     if (!openWindow()) return 2;
     {
         queue_ = std::make_unique<RenderQueue>(service_, [] { glfwPostEmptyEvent(); });
@@ -1024,6 +1035,10 @@ int Viewer::run() {
             }
             takeResults();
             if (dirty_) refreshShown();
+            if (judge_dirty_) {
+                judge_dirty_ = false;
+                judgeScene();
+            }
 
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();

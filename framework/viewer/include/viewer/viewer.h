@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "shaderlab/camera.h"
 #include "shaderlab/gl_context.h"
 #include "shaderlab/lab_spec.h"
 
@@ -20,6 +21,7 @@ struct ViewerOptions {
     double timeout_s = 5.0;  // one render of one scene
     std::string scene;       // first scene shown (empty: the lab's first)
     std::string image;       // first image shown, "pass.attachment" (empty: the final graded image)
+    CameraOrbit orbit;       // first camera: the graded view turned by this
     // For scripts and tests: exit after this many frames once the first picture (or error) and
     // the reference (when one is rendered) are in, or once this many pictures (or errors) made
     // after a file change are shown (0: neither).
