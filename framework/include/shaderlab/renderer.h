@@ -1,8 +1,8 @@
 // Executes a LabSpec: for every graded scene, runs the lab's passes in order (repeat groups as
 // often as asked) on the current GL context and reads back the graded passes' float targets. The same code
-// path serves headless grading and (later) the student's window: it only needs a current context. It does not
-// judge images (grader/ does) and does not isolate untrusted code: the caller runs it in a child process when
-// the shaders are a submission's.
+// path serves headless grading and the student viewer (framework/viewer/, through a child process): it
+// only needs a current context. It does not judge images (grader/ does) and does not isolate untrusted
+// code: the caller runs it in a child process when the shaders are a submission's.
 #pragma once
 
 #include <functional>

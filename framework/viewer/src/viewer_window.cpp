@@ -887,9 +887,17 @@ void Viewer::drawPicture(float x, float width, float height) {
     if (!error_title_.empty()) {
         ImGui::SetCursorPosY(height - error_h - 8.0f);
         ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0.25f, 0.05f, 0.05f, 1.0f));
-        ImGui::BeginChild("errors", ImVec2(0, error_h), true, ImGuiWindowFlags_HorizontalScrollbar);
+        ImGui::BeginChild("errors", ImVec2(0, error_h), true);
         ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", error_title_.c_str());
-        ImGui::TextUnformatted(error_text_.c_str());
+        // Source lines and carets keep their columns; the explanations ("= ...") wrap.
+        std::istringstream lines(error_text_);
+        for (std::string line; std::getline(lines, line);) {
+            const std::size_t first = line.find_first_not_of(' ');
+            if (first != std::string::npos && line.compare(first, 2, "= ") == 0)
+                ImGui::TextWrapped("%s", line.c_str());
+            else
+                ImGui::TextUnformatted(line.c_str());
+        }
         ImGui::EndChild();
         ImGui::PopStyleColor();
     }
