@@ -2,6 +2,9 @@
 // poll the folder, take finished renders, handle keys, lay out the panels, draw, swap. Every
 // picture comes from RenderService (the grader's renderer in a child process); every number from
 // grader::judgeImage with the lab's thresholds.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <filesystem>
@@ -20,10 +23,6 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 
 #include "grader/heatmap.h"
 #include "grader/report.h"
@@ -301,7 +300,8 @@ class Viewer {
 
     // Derived, recomputed when `dirty_` is set.
     bool dirty_ = true;
-    bool judge_dirty_ = false;  // new pictures: judge the scene again
+    bool judge_dirty_ = false;     // new pictures: judge the scene again
+    bool scroll_to_shown_ = true;  // bring the shown image into the list's view
     Shown shown_;
     Texture tex_student_, tex_reference_, tex_diff_;
     std::optional<grader::ImageVerdict> shown_verdict_;
@@ -619,7 +619,7 @@ void Viewer::handleKeys() {
         index = std::clamp(index, 0, static_cast<int>(mine->size()) - 1);
         selected_ = imageKey((*mine)[static_cast<std::size_t>(index)]);
         input_ = -1;
-        dirty_ = true;
+        dirty_ = scroll_to_shown_ = true;
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_TAB) && shown_.student_pass) {
         const PassSpec* pass = nullptr;
@@ -699,7 +699,12 @@ void Viewer::drawControls(float width, float height) {
         for (const PassImage& p : *mine) {
             const std::string label =
                 (p.graded ? "* " : "  ") + p.pass + " -> " + p.target + "." + p.attachment;
-            if (ImGui::Selectable(label.c_str(), shown_.student_pass == &p && input_ < 0)) {
+            const bool shown = shown_.student_pass == &p && input_ < 0;
+            if (shown && scroll_to_shown_) {
+                ImGui::SetScrollHereY();
+                scroll_to_shown_ = false;
+            }
+            if (ImGui::Selectable(label.c_str(), shown)) {
                 selected_ = imageKey(p);
                 input_ = -1;
                 dirty_ = true;
