@@ -153,6 +153,50 @@ class RenderQueue {
     std::string running_what_;
 };
 
+// Judging runs on its own thread too (FLIP and SSIM take tens of milliseconds an image): the
+// frame that receives a picture must not stall. Of each slot only the newest job waits.
+class Worker {
+  public:
+    Worker() : thread_([this] { loop(); }) {}
+    ~Worker() {
+        {
+            std::lock_guard<std::mutex> lock(m_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+    }
+    void submit(int slot, std::function<void()> job) {
+        {
+            std::lock_guard<std::mutex> lock(m_);
+            pending_[slot] = std::move(job);
+        }
+        cv_.notify_all();
+    }
+
+  private:
+    void loop() {
+        for (;;) {
+            std::function<void()> job;
+            {
+                std::unique_lock<std::mutex> lock(m_);
+                cv_.wait(lock, [this] { return stop_ || pending_[0] || pending_[1]; });
+                if (stop_) return;
+                std::function<void()>& next = pending_[0] ? pending_[0] : pending_[1];
+                job = std::move(next);
+                next = nullptr;
+            }
+            job();
+        }
+    }
+
+    std::mutex m_;
+    std::condition_variable cv_;
+    std::function<void()> pending_[2];
+    bool stop_ = false;
+    std::thread thread_;  // last: started once the rest is built
+};
+
 // ---------------------------------------------------------------------------------------------
 
 // A picture on the GPU as the window shows it: clamped to 0..1, 8 bits, NaN and Inf in
@@ -263,6 +307,9 @@ class Viewer {
     std::string sceneName() const { return spec_.scenes[static_cast<std::size_t>(scene_)].name; }
     const std::vector<PassImage>* studentPasses() const;
     const std::vector<PassImage>* referencePasses() const;
+    std::shared_ptr<const void> referenceOwner() const;
+    void takeAnalyses();
+    bool analysing() const { return shown_pending_ || scene_pending_; }
     std::string timeoutCulprit(const IsolatedRender& r) const;
 
     ViewerOptions opt_;
@@ -281,7 +328,7 @@ class Viewer {
     int input_ = -1;        // -1: the pass's output; else the index of the input it reads
 
     // The last picture that rendered, and what it was rendered for.
-    std::optional<IsolatedRender> student_;
+    std::shared_ptr<const IsolatedRender> student_;
     std::string student_scene_;
     CameraOrbit student_orbit_;
     std::uint64_t generation_ = 0;  // bumped by each file change
@@ -290,11 +337,11 @@ class Viewer {
     std::string error_title_, error_text_;  // the last failed render (cleared by a good one)
     std::string last_printed_error_;
 
-    std::optional<IsolatedRender> reference_;
+    std::shared_ptr<const IsolatedRender> reference_;
     std::string reference_scene_;
     CameraOrbit reference_orbit_;
     std::string reference_error_;
-    std::map<std::string, std::vector<PassImage>> goldens_;  // by scene
+    std::map<std::string, std::shared_ptr<const std::vector<PassImage>>> goldens_;  // by scene
     std::map<std::string, std::string> golden_errors_;
     std::map<std::string, grader::Image> files_;  // input files, by path
 
@@ -307,6 +354,23 @@ class Viewer {
     std::optional<grader::ImageVerdict> shown_verdict_;
     std::vector<Judged> judged_;  // graded images of the scene (graded view only)
     bool judged_graded_view_ = false;
+
+    // Judgements made on the worker: the newest request's number, and what came back.
+    struct ShownAnalysis {
+        std::uint64_t seq = 0;
+        grader::ImageVerdict verdict;
+        grader::Image heat;
+    };
+    struct SceneAnalysis {
+        std::uint64_t seq = 0;
+        std::vector<Judged> judged;
+    };
+    std::mutex analysis_m_;
+    std::optional<ShownAnalysis> shown_ready_;
+    std::optional<SceneAnalysis> scene_ready_;
+    std::uint64_t shown_seq_ = 0, scene_seq_ = 0;
+    bool shown_pending_ = false, scene_pending_ = false;
+    std::unique_ptr<Worker> worker_;  // made in run(), gone before the window
 
     // Where the picture was drawn last frame (window coordinates), for the inspector and screenshots.
     ImVec2 image_min_{0, 0};
@@ -333,7 +397,14 @@ const std::vector<PassImage>* Viewer::referencePasses() const {
     }
     if (student_orbit_.any()) return nullptr;
     const auto it = goldens_.find(student_scene_);
-    return it == goldens_.end() ? nullptr : &it->second;
+    return it == goldens_.end() ? nullptr : it->second.get();
+}
+
+// What keeps referencePasses() alive while the worker judges with it.
+std::shared_ptr<const void> Viewer::referenceOwner() const {
+    if (!opt_.reference_root.empty()) return reference_;
+    const auto it = goldens_.find(student_scene_);
+    return it == goldens_.end() ? nullptr : it->second;
 }
 
 std::string Viewer::timeoutCulprit(const IsolatedRender& r) const {
@@ -370,7 +441,7 @@ void Viewer::requestReference() {
             std::vector<PassImage> images;
             std::string error;
             if (loadGoldenScene(spec_, spec_.lab_dir, scene, &images, &error))
-                goldens_[scene] = std::move(images);
+                goldens_[scene] = std::make_shared<const std::vector<PassImage>>(std::move(images));
             else
                 golden_errors_[scene] = error;
         }
@@ -392,7 +463,7 @@ void Viewer::onStudent(const Finished& f) {
     got_first_result_ = true;
     const bool fresh_reload = f.job.save_ns != 0;
     if (r.status == IsolatedStatus::Ok && !r.render.scenes.empty()) {
-        student_ = r;
+        student_ = std::make_shared<const IsolatedRender>(r);
         student_scene_ = f.job.request.scene;
         student_orbit_ = f.job.request.orbit;
         error_title_.clear();
@@ -451,7 +522,7 @@ void Viewer::takeResults() {
             reference_error_.clear();
             if (f.result.status != IsolatedStatus::Ok)
                 reference_error_ = "the reference solution did not render: " + f.result.message;
-            reference_ = std::move(f.result);
+            reference_ = std::make_shared<const IsolatedRender>(std::move(f.result));
             reference_scene_ = f.job.request.scene;
             reference_orbit_ = f.job.request.orbit;
             dirty_ = judge_dirty_ = true;
@@ -471,6 +542,8 @@ void Viewer::refreshShown() {
     dirty_ = false;
     shown_ = Shown();
     shown_verdict_.reset();
+    ++shown_seq_;  // whatever the worker is judging is for another picture now
+    shown_pending_ = false;
     const std::vector<PassImage>* mine = studentPasses();
     const std::vector<PassImage>* theirs = referencePasses();
     if (!mine || mine->empty()) {
@@ -551,49 +624,92 @@ void Viewer::refreshShown() {
             shown_.student_pass ? spec_.findPass(shown_.student_pass->pass) : nullptr;
         const grader::Thresholds t =
             judge_pass ? imageThresholds(spec_, student_scene_, *judge_pass) : grader::Thresholds();
-        const bool hdr = judge_pass && judge_pass->compare == CompareMode::Hdr;
-        static const std::vector<std::uint8_t> none;
-        shown_verdict_ = grader::judgeImage(
-            *shown_.reference, shown_.reference_pass ? shown_.reference_pass->coverage : none,
-            *shown_.student, shown_.student_pass ? shown_.student_pass->coverage : none, t,
-            hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
-        grader::HeatmapConfig hc;
-        hc.outline = shown_verdict_->mismatches.empty() ? nullptr : &shown_verdict_->mismatches;
-        tex_diff_.upload(
-            grader::diffHeatmap(shown_verdict_->flip_map, shown_.student->width, shown_.student->height, hc));
+        const grader::ImageRange range = judge_pass && judge_pass->compare == CompareMode::Hdr
+                                             ? grader::ImageRange::Hdr
+                                             : grader::ImageRange::Display;
+        // The shared pointers keep the images alive for the worker (input files live in files_,
+        // which only grows).
+        const std::uint64_t seq = shown_seq_;
+        shown_pending_ = true;
+        worker_->submit(0, [this, seq, t, range, mine = student_, theirs = referenceOwner(),
+                            shown = shown_]() {
+            static const std::vector<std::uint8_t> none;
+            ShownAnalysis a;
+            a.seq = seq;
+            a.verdict = grader::judgeImage(
+                *shown.reference, shown.reference_pass ? shown.reference_pass->coverage : none,
+                *shown.student, shown.student_pass ? shown.student_pass->coverage : none, t, range);
+            grader::HeatmapConfig hc;
+            hc.outline = a.verdict.mismatches.empty() ? nullptr : &a.verdict.mismatches;
+            a.heat = grader::diffHeatmap(a.verdict.flip_map, shown.student->width, shown.student->height, hc);
+            std::lock_guard<std::mutex> lock(analysis_m_);
+            shown_ready_ = std::move(a);
+            glfwPostEmptyEvent();
+        });
     }
 }
 
 // The verdict grading would give this scene: every graded image against its reference.
 void Viewer::judgeScene() {
     judged_.clear();
+    judged_graded_view_ = !student_orbit_.any();
+    const std::uint64_t seq = ++scene_seq_;
+    scene_pending_ = false;
     const std::vector<PassImage>* mine = studentPasses();
     const std::vector<PassImage>* theirs = referencePasses();
-    judged_graded_view_ = !student_orbit_.any();
     if (!mine || !theirs) return;
-    for (const PassImage& p : *mine) {
-        if (!p.graded) continue;
-        const PassSpec* pass = spec_.findPass(p.pass);
-        const PassImage* ref = nullptr;
-        for (const PassImage& q : *theirs)
-            if (imageKey(q) == imageKey(p)) ref = &q;
-        if (!pass || !ref || ref->color.width != p.color.width || ref->color.height != p.color.height)
-            continue;
-        Judged j;
-        j.label = imageKey(p);
-        j.verdict = grader::judgeImage(
-            ref->color, ref->coverage, p.color, p.coverage, imageThresholds(spec_, student_scene_, *pass),
-            pass->compare == CompareMode::Hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
-        judged_.push_back(std::move(j));
+    scene_pending_ = true;
+    worker_->submit(1, [this, seq, mine, theirs, keep_mine = student_, keep_theirs = referenceOwner(),
+                        scene = student_scene_]() {
+        SceneAnalysis a;
+        a.seq = seq;
+        for (const PassImage& p : *mine) {
+            if (!p.graded) continue;
+            const PassSpec* pass = spec_.findPass(p.pass);
+            const PassImage* ref = nullptr;
+            for (const PassImage& q : *theirs)
+                if (imageKey(q) == imageKey(p)) ref = &q;
+            if (!pass || !ref || ref->color.width != p.color.width || ref->color.height != p.color.height)
+                continue;
+            Judged j;
+            j.label = imageKey(p);
+            j.verdict = grader::judgeImage(
+                ref->color, ref->coverage, p.color, p.coverage, imageThresholds(spec_, scene, *pass),
+                pass->compare == CompareMode::Hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
+            a.judged.push_back(std::move(j));
+        }
+        std::lock_guard<std::mutex> lock(analysis_m_);
+        scene_ready_ = std::move(a);
+        glfwPostEmptyEvent();
+    });
+}
+
+// Takes what the worker judged, when it is about the pictures on screen now.
+void Viewer::takeAnalyses() {
+    std::optional<ShownAnalysis> shown;
+    std::optional<SceneAnalysis> scene;
+    {
+        std::lock_guard<std::mutex> lock(analysis_m_);
+        shown.swap(shown_ready_);
+        scene.swap(scene_ready_);
     }
-    if (judged_.empty() || !judged_graded_view_) return;
-    bool passed = true;
-    for (const Judged& j : judged_) passed = passed && j.verdict.passed;
-    std::printf("view: scene %s %s\n", student_scene_.c_str(), passed ? "passes" : "FAILS");
-    for (const Judged& j : judged_)
-        for (const std::string& reason : j.verdict.reasons)
-            std::printf("      %s: %s\n", j.label.c_str(), reason.c_str());
-    std::fflush(stdout);
+    if (shown && shown->seq == shown_seq_) {
+        shown_pending_ = false;
+        tex_diff_.upload(shown->heat);
+        shown_verdict_ = std::move(shown->verdict);
+    }
+    if (scene && scene->seq == scene_seq_) {
+        scene_pending_ = false;
+        judged_ = std::move(scene->judged);
+        if (judged_.empty() || !judged_graded_view_) return;
+        bool passed = true;
+        for (const Judged& j : judged_) passed = passed && j.verdict.passed;
+        std::printf("view: scene %s %s\n", student_scene_.c_str(), passed ? "passes" : "FAILS");
+        for (const Judged& j : judged_)
+            for (const std::string& reason : j.verdict.reasons)
+                std::printf("      %s: %s\n", j.label.c_str(), reason.c_str());
+        std::fflush(stdout);
+    }
 }
 
 void Viewer::handleKeys() {
@@ -815,7 +931,7 @@ void Viewer::drawPicture(float x, float width, float height) {
             missing = "no reference for this image" + std::string(orbit_.any() ? " in a turned view" : "");
     } else {
         tex = shown_verdict_ ? &tex_diff_ : nullptr;
-        if (!tex) missing = "no diff: it needs both pictures";
+        if (!tex) missing = shown_pending_ ? "comparing..." : "no diff: it needs both pictures";
     }
     if (!missing.empty() && !(mode_ == ViewMode::Split && tex)) {
         ImGui::Dummy(ImVec2(area_w, area_h * 0.4f));
@@ -1020,14 +1136,14 @@ int Viewer::run() {
     if (!openWindow()) return 2;
     {
         queue_ = std::make_unique<RenderQueue>(service_, [] { glfwPostEmptyEvent(); });
+        worker_ = std::make_unique<Worker>();
         watch_ = std::make_unique<FolderWatch>((fs::path(opt_.submission_root) / spec_.id).string());
         std::printf("view: %s from %s; save a file there and the picture follows\n", spec_.id.c_str(),
                     (fs::path(opt_.submission_root) / spec_.id).string().c_str());
         std::fflush(stdout);
         requestStudent(0);
         int frames_after_first = 0;
-        double frame_ms_sum = 0.0, frame_ms_max = 0.0;
-        int frame_count = 0;
+        std::vector<double> frame_ms;
         bool screenshot_due = false;
         while (!glfwWindowShouldClose(window_)) {
             // Wait for input, a finished render, or the next look at the files.
@@ -1052,6 +1168,7 @@ int Viewer::run() {
                 judge_dirty_ = false;
                 judgeScene();
             }
+            takeAnalyses();
 
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
@@ -1068,10 +1185,13 @@ int Viewer::run() {
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
             // Scripts want both pictures: count frames once the reference is in too.
-            if (got_first_result_ && (opt_.reference_root.empty() || reference_)) ++frames_after_first;
+            // and judged.
+            const bool settled =
+                got_first_result_ && (opt_.reference_root.empty() || reference_) && !analysing();
+            if (settled) ++frames_after_first;
             const bool done_frames = opt_.frames > 0 && frames_after_first >= opt_.frames;
             const bool done_reloads =
-                opt_.exit_after_reloads > 0 && reloads_shown_ >= opt_.exit_after_reloads;
+                opt_.exit_after_reloads > 0 && reloads_shown_ >= opt_.exit_after_reloads && settled;
             // The picture of a reload reaches the screen in the frame after it arrived.
             if (screenshot_due || done_frames) {
                 if (!opt_.screenshot.empty() || !opt_.screenshot_window.empty())
@@ -1081,15 +1201,24 @@ int Viewer::run() {
             if (done_reloads) screenshot_due = true;
             glfwSwapBuffers(window_);
             const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-            frame_ms_sum += ms;
-            frame_ms_max = std::max(frame_ms_max, ms);
-            ++frame_count;
+            frame_ms.push_back(ms);
         }
-        if (frame_count > 0)
-            std::printf("view: %d frames, %.1f ms a frame on average, %.1f ms at most\n", frame_count,
-                        frame_ms_sum / frame_count, frame_ms_max);
+        // The first frame compiles the panels' shaders: left out of the figures.
+        if (frame_ms.size() > 1) {
+            std::vector<double> t(frame_ms.begin() + 1, frame_ms.end());
+            std::sort(t.begin(), t.end());
+            double sum = 0.0;
+            for (double v : t) sum += v;
+            std::printf(
+                "view: %zu frames, %.1f ms a frame on average, median %.1f, 95th percentile %.1f, at most "
+                "%.1f "
+                "(first frame %.1f)\n",
+                frame_ms.size(), sum / static_cast<double>(t.size()), t[t.size() / 2],
+                t[std::min(t.size() - 1, t.size() * 95 / 100)], t.back(), frame_ms[0]);
+        }
         service_->shutdown();
         queue_.reset();
+        worker_.reset();
     }
     closeWindow();
     return 0;
