@@ -446,6 +446,15 @@ TEST_F(ViewerWindow, HangingShaderTimesOutAndTheWindowStaysResponsive) {
     EXPECT_GE(frames, 15) << view.output;
 }
 
+// Without a display the viewer says so and points at `watch` (exit 2), and leaves no process behind.
+TEST(ViewerWithoutDisplay, SaysWhyAndPointsAtWatch) {
+    const CommandRun r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(SHADERLAB_CLI) +
+                                    " view 01-phong --submission " + (kSource / "labs").string() +
+                                    " --labs " + (kSource / "labs").string() + " 2>&1");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("shaderlab watch 01-phong"), std::string::npos) << r.output;
+}
+
 // `watch` checks again on every save and prints the verdict per scene.
 TEST(ViewerWatch, ChecksAgainOnEverySave) {
     const fs::path sub = phongSubmission("watch_cmd");
