@@ -11,6 +11,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev python3-glad clang-format libvalijson-dev libpng-dev
   chromium tidy  # tests/report_page_test.cpp renders and validates report.html (skipped without them)
   gnuplot-nox    # scripts/bench.sh draws the plots of docs/performance.md
+  libimgui-dev                  # the student viewer's panels (`shaderlab view`); GLFW is above
+  xvfb xauth                    # tests/viewer_test.cpp opens the viewer on a virtual display (skipped without)
 )
 missing=()
 for p in "${packages[@]}"; do

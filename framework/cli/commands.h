@@ -70,6 +70,30 @@ struct CheckArgs {
 };
 int runCheck(const CheckArgs& args);
 
+struct ViewArgs {
+    CommonOptions common;
+    std::string lab;
+    std::string submission;      // empty: <course>/work, as `check`
+    std::string reference_root;  // empty: reference_solutions beside labs/ when it has the lab
+    bool no_reference = false;   // compare with the stored golden images
+    double timeout_s = 5.0;      // one scene's render
+    std::string scene;
+    std::string image;         // pass.attachment shown first
+    std::vector<float> orbit;  // yaw, pitch (degrees), zoom
+    std::string mode = "student";
+    int frames = 0;
+    int exit_after_reloads = 0;
+    std::string screenshot, screenshot_window;
+};
+int runView(const ViewArgs& args);
+
+// `shaderlab watch`: runCheck() on every settled change of the lab's folder.
+struct WatchArgs {
+    CheckArgs check;
+    int max_checks = 0;  // stop after this many checks (0: until interrupted)
+};
+int runWatch(const WatchArgs& args);
+
 struct CompareArgs {
     std::string a, b;
     bool json = false;

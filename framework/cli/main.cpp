@@ -76,6 +76,58 @@ int main(int argc, char** argv) {
     check_cmd->add_option("--backend", check.common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
     check_cmd->add_option("--labs", check.common.labs_root, "folder holding the labs");
 
+    ViewArgs view;
+    CLI::App* view_cmd = app.add_subcommand(
+        "view", "open a window on one lab of your work that follows every save, beside the reference");
+    view_cmd->add_option("lab", view.lab, "lab id, e.g. 01-phong")->required();
+    view_cmd->add_option(
+        "--submission", view.submission,
+        "folder mirroring labs/ (default: work/ beside labs/; reference_solutions works too)");
+    view_cmd->add_option("--reference", view.reference_root,
+                         "reference solutions folder (default: reference_solutions beside labs/)");
+    view_cmd->add_flag("--no-reference", view.no_reference, "compare with the stored golden images");
+    view_cmd->add_option("--scene", view.scene, "scene shown first");
+    view_cmd->add_option("--image", view.image, "image shown first: PASS.ATTACHMENT, e.g. bright.color");
+    view_cmd
+        ->add_option("--orbit", view.orbit,
+                     "start turned from the graded view: YAW PITCH (degrees) ZOOM (R in the window resets)")
+        ->expected(3);
+    view_cmd->add_option("--mode", view.mode, "first view")
+        ->check(CLI::IsMember({"student", "reference", "diff", "split"}))
+        ->capture_default_str();
+    view_cmd->add_option("--timeout", view.timeout_s, "seconds one scene may take to render")
+        ->check(CLI::Range(0.1, 600.0))
+        ->capture_default_str();
+    view_cmd->add_option("--frames", view.frames, "exit after N frames once the first picture is shown")
+        ->check(CLI::Range(1, 1000000));
+    view_cmd
+        ->add_option("--exit-after-reloads", view.exit_after_reloads,
+                     "exit once N pictures (or errors) made after a file change are shown")
+        ->check(CLI::Range(1, 1000000));
+    view_cmd->add_option("--screenshot", view.screenshot,
+                         "at exit, save the picture as shown, one pixel per image pixel (PNG)");
+    view_cmd->add_option("--screenshot-window", view.screenshot_window,
+                         "at exit, save the whole window (PNG)");
+    view_cmd->add_option("--backend", view.common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
+    view_cmd->add_option("--labs", view.common.labs_root, "folder holding the labs");
+
+    WatchArgs watch;
+    CLI::App* watch_cmd = app.add_subcommand(
+        "watch", "check one lab of your work again on every save, without a window (like `check`)");
+    watch_cmd->add_option("lab", watch.check.lab, "lab id, e.g. 01-phong")->required();
+    watch_cmd->add_option("--submission", watch.check.submission,
+                          "folder mirroring labs/ (default: work/ beside labs/)");
+    watch_cmd->add_option("--out", watch.check.out_dir,
+                          "where images and the report go (default: out/check)");
+    watch_cmd->add_flag("--no-reference", watch.check.no_reference, "use the stored golden images");
+    watch_cmd->add_option("--timeout", watch.check.timeout_s, "seconds the lab may take to render")
+        ->check(CLI::Range(0.1, 86400.0))
+        ->capture_default_str();
+    watch_cmd->add_option("--max-checks", watch.max_checks, "stop after N checks (default: until Ctrl-C)")
+        ->check(CLI::Range(1, 1000000));
+    watch_cmd->add_option("--backend", watch.check.common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
+    watch_cmd->add_option("--labs", watch.check.common.labs_root, "folder holding the labs");
+
     CompareArgs compare;
     CLI::App* compare_cmd =
         app.add_subcommand("compare", "print PSNR, SSIM, FLIP and mismatch of two PNG images");
@@ -131,6 +183,8 @@ int main(int argc, char** argv) {
     if (check_cmd->parsed()) return runCheck(check);
     if (start_cmd->parsed()) return runStart(start);
     if (compare_cmd->parsed()) return runCompare(compare);
+    if (view_cmd->parsed()) return runView(view);
+    if (watch_cmd->parsed()) return runWatch(watch);
     if (goldens_cmd->parsed()) return runGoldens(goldens);
     if (corpus_cmd->parsed()) return runCorpus(corpus);
     return 2;

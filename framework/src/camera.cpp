@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 namespace shaderlab {
 
@@ -104,6 +105,28 @@ std::string applyCameraOverride(const Scene& scene, const std::vector<ResolvedLi
     if (o.z_near && !o.z_far && c->z_far <= c->z_near) c->z_far = c->z_near * 1000.0f;
     if (o.z_far && !o.z_near && c->z_near >= c->z_far) c->z_near = c->z_far * 1e-3f;
     return {};
+}
+
+void orbitCamera(const Scene& scene, const CameraOrbit& orbit, Camera* c) {
+    if (!orbit.any()) return;
+    glm::vec3 offset = c->position - c->target;
+    const float distance = glm::length(offset);
+    if (!(distance > 1e-6f)) return;
+    const glm::vec3 axis = upFor(-offset);
+    const glm::quat yaw = glm::angleAxis(glm::radians(orbit.yaw_deg), axis);
+    offset = yaw * offset;
+    // Elevation above the plane normal to the axis, kept off the poles so lookAt stays defined.
+    const float elevation = std::asin(std::clamp(glm::dot(offset / distance, axis), -1.0f, 1.0f));
+    const float limit = glm::radians(85.0f);
+    const float wanted = std::clamp(elevation + glm::radians(orbit.pitch_deg), -limit, limit);
+    const glm::vec3 right = glm::cross(axis, offset);
+    if (glm::length(right) > 1e-6f)
+        offset = glm::angleAxis(elevation - wanted, glm::normalize(right)) * offset;
+    const float zoom = orbit.zoom > 1e-3f ? orbit.zoom : 1e-3f;
+    c->position = c->target + offset / zoom;
+    c->ortho_height /= zoom;
+    c->up = upFor(c->target - c->position);
+    fitDepthRange(scene, c);
 }
 
 glm::mat4 viewMatrix(const Camera& camera) { return glm::lookAt(camera.position, camera.target, camera.up); }

@@ -337,18 +337,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             const PassImage& theirs = ref_it->second[i];
             const GradedImage& g = graded[i];
             const bool final_image = i + 1 == scene.passes.size();
-            // The lab's thresholds, then the pass's, then the scene's.
-            const SceneSpec* scene_spec = nullptr;
-            for (const SceneSpec& candidate : spec.scenes)
-                if (candidate.name == scene.scene) scene_spec = &candidate;
-            const GradingThresholds t =
-                scene_spec ? scene_spec->thresholds.applyTo(g.pass->thresholds) : g.pass->thresholds;
-            grader::Thresholds thresholds;
-            thresholds.psnr_min_db = t.psnr_min_db;
-            thresholds.ssim_min = t.ssim_min;
-            thresholds.flip_mean_max = t.flip_mean_max;
-            thresholds.mismatch_max = t.mismatch_max;
-            thresholds.pixel_tolerance = t.pixel_tolerance;
+            const grader::Thresholds thresholds = imageThresholds(spec, scene.scene, *g.pass);
             ScopedTiming metrics_timing("metrics", id, scene.scene);
             const grader::ImageVerdict v =
                 grader::judgeImage(theirs.color, theirs.coverage, mine.color, mine.coverage, thresholds,
@@ -607,6 +596,40 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
         }
     }
     return errors;
+}
+
+grader::Thresholds imageThresholds(const LabSpec& spec, const std::string& scene, const PassSpec& pass) {
+    const SceneSpec* scene_spec = nullptr;
+    for (const SceneSpec& candidate : spec.scenes)
+        if (candidate.name == scene) scene_spec = &candidate;
+    const GradingThresholds t =
+        scene_spec ? scene_spec->thresholds.applyTo(pass.thresholds) : pass.thresholds;
+    grader::Thresholds out;
+    out.psnr_min_db = t.psnr_min_db;
+    out.ssim_min = t.ssim_min;
+    out.flip_mean_max = t.flip_mean_max;
+    out.mismatch_max = t.mismatch_max;
+    out.pixel_tolerance = t.pixel_tolerance;
+    return out;
+}
+
+bool loadGoldenScene(const LabSpec& spec, const std::string& stored_dir, const std::string& scene,
+                     std::vector<PassImage>* out, std::string* error) {
+    LabSpec one = spec;
+    one.scenes.erase(std::remove_if(one.scenes.begin(), one.scenes.end(),
+                                    [&](const SceneSpec& s) { return s.name != scene; }),
+                     one.scenes.end());
+    if (one.scenes.empty()) {
+        *error = "the lab has no scene '" + scene + "'";
+        return false;
+    }
+    ReferenceImages ref = loadGoldens(one, stored_dir);
+    if (!ref.ok) {
+        *error = ref.error;
+        return false;
+    }
+    *out = std::move(ref.scenes[scene]);
+    return true;
 }
 
 }  // namespace shaderlab

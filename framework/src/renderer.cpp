@@ -917,6 +917,7 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     ctx.lights = resolveLights(scene->scene, scene_spec, camera);
     std::string problem = applyCameraOverride(scene->scene, ctx.lights, scene_spec.camera, &camera);
     if (!problem.empty()) return failAt(RenderStatus::RenderError, scene_spec.path + ".camera: " + problem);
+    orbitCamera(scene->scene, options_.orbit, &camera);
     for (const PassSpec& pass : spec_.passes) {
         PassCamera pc;
         pc.camera = camera;

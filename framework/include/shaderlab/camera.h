@@ -33,6 +33,19 @@ std::string applyCameraOverride(const Scene& scene, const std::vector<ResolvedLi
 // Near and far planes that hold the scene's bounding sphere as seen from the camera.
 void fitDepthRange(const Scene& scene, Camera* camera);
 
+// A turn of the camera about its target, as a viewer's orbit and zoom give it: yaw about the
+// world's up axis, pitch towards it (the elevation stays within 85 degrees of the horizon), and
+// the distance to the target (an orthographic camera's height) divided by `zoom`.
+struct CameraOrbit {
+    float yaw_deg = 0.0f;
+    float pitch_deg = 0.0f;
+    float zoom = 1.0f;
+    bool any() const { return yaw_deg != 0.0f || pitch_deg != 0.0f || zoom != 1.0f; }
+};
+
+// Applies `orbit` to `camera` and fits the near and far planes to the scene again.
+void orbitCamera(const Scene& scene, const CameraOrbit& orbit, Camera* camera);
+
 glm::mat4 viewMatrix(const Camera& camera);
 glm::mat4 projectionMatrix(const Camera& camera, float aspect);
 

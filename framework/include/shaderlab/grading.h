@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grader/report.h"
+#include "grader/scoring.h"
 #include "shaderlab/gl_context.h"
 #include "shaderlab/isolated_render.h"
 
@@ -47,6 +48,16 @@ grader::ReportDiagnostic toReportDiagnostic(const Diagnostic& d);
 // ".coverage.png" for the coverage mask.
 std::string goldenPath(const std::string& lab_dir, const std::string& scene, const std::string& image,
                        bool final_image, bool coverage, bool hdr = false);
+
+// The thresholds one graded image of `scene` is judged with: the lab's, then the pass's, then the
+// scene's.
+grader::Thresholds imageThresholds(const LabSpec& spec, const std::string& scene, const PassSpec& pass);
+
+// The reference images of one scene read from the stored goldens under `stored_dir` (a lab
+// folder holding golden/): one PassImage per graded image, in the order the renderer reads them.
+// False, with the reason, when one is missing or unreadable.
+bool loadGoldenScene(const LabSpec& spec, const std::string& stored_dir, const std::string& scene,
+                     std::vector<PassImage>* out, std::string* error);
 
 // Renders the reference solution of each lab and writes its goldens. Returns error messages.
 std::vector<std::string> writeGoldens(const std::string& reference_root, const std::string& labs_root,

@@ -1,8 +1,8 @@
 // Executes a LabSpec: for every graded scene, runs the lab's passes in order (repeat groups as
 // often as asked) on the current GL context and reads back the graded passes' float targets. The same code
-// path serves headless grading and (later) the student's window: it only needs a current context. It does not
-// judge images (grader/ does) and does not isolate untrusted code: the caller runs it in a child process when
-// the shaders are a submission's.
+// path serves headless grading and the student viewer (framework/viewer/, through a child process): it
+// only needs a current context. It does not judge images (grader/ does) and does not isolate untrusted
+// code: the caller runs it in a child process when the shaders are a submission's.
 #pragma once
 
 #include <functional>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grader/image.h"
+#include "shaderlab/camera.h"
 #include "shaderlab/lab_spec.h"
 #include "shaderlab/scene.h"
 #include "shaderlab/shader_program.h"
@@ -59,6 +60,9 @@ struct RenderOptions {
     // The submission folder: student files must resolve inside it (so a lab folder that is a
     // symlink out of the submission is refused). Empty: the shader folder itself.
     std::string containment_root;
+    // Turns every scene's camera about its target (the student viewer's orbit and zoom); the
+    // lights stay where the graded view puts them. Identity: the graded view.
+    CameraOrbit orbit;
     // Told what the renderer is about to do, one line each: "compile <vertex> <fragment>",
     // "scene <scene>", "pass <scene> <pass>" (a repeated pass on its first run only) and
     // "done <scene> <milliseconds>". May be empty.

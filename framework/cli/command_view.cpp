@@ -1,0 +1,102 @@
+// `shaderlab view` (the window, framework/viewer/) and `shaderlab watch` (check on every save).
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "commands.h"
+#include "shaderlab/lab_spec.h"
+#include "viewer/file_watch.h"
+#include "viewer/viewer.h"
+
+namespace fs = std::filesystem;
+
+namespace shaderlab::cli {
+
+namespace {
+
+// The student's lab folder, or a message that says how to get one.
+bool studentLabFolder(const std::string& submission_arg, const std::string& labs_root, const std::string& lab,
+                      std::string* submission) {
+    *submission = submission_arg.empty() ? workRoot(labs_root) : submission_arg;
+    std::error_code ec;
+    const fs::path folder = fs::absolute(fs::path(*submission) / lab, ec).lexically_normal();
+    if (fs::is_directory(folder, ec)) return true;
+    std::cerr << "shaderlab: " << folder.string() << " does not exist";
+    if (submission_arg.empty())
+        std::cerr << ": run `shaderlab start " << lab
+                  << "` first; it copies the starter code there for you to edit";
+    std::cerr << "\n";
+    return false;
+}
+
+}  // namespace
+
+int runView(const ViewArgs& args) {
+    std::string labs_root;
+    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
+    const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / args.lab).string());
+    if (!parsed.ok) {
+        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
+        return 2;
+    }
+    viewer::ViewerOptions options;
+    options.spec = parsed.spec;
+    if (!studentLabFolder(args.submission, labs_root, args.lab, &options.submission_root)) return 2;
+    options.submission_root = fs::absolute(options.submission_root).lexically_normal().string();
+    if (!args.scene.empty()) {
+        bool known = false;
+        for (const SceneSpec& s : parsed.spec.scenes) known = known || s.name == args.scene;
+        if (!known) {
+            std::cerr << "shaderlab: lab " << args.lab << " has no scene '" << args.scene << "'\n";
+            return 2;
+        }
+    }
+    if (!args.no_reference) {
+        const std::string root = args.reference_root.empty()
+                                     ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
+                                     : args.reference_root;
+        std::error_code ec;
+        if (fs::is_directory(fs::path(root) / args.lab, ec))
+            options.reference_root = fs::absolute(root).lexically_normal().string();
+    }
+    parseBackend(args.common.backend, &options.backend);
+    options.timeout_s = args.timeout_s;
+    options.scene = args.scene;
+    options.image = args.image;
+    if (args.orbit.size() == 3) {
+        options.orbit.yaw_deg = args.orbit[0];
+        options.orbit.pitch_deg = args.orbit[1];
+        options.orbit.zoom = args.orbit[2];
+    }
+    options.view_mode = args.mode;
+    options.frames = args.frames;
+    options.exit_after_reloads = args.exit_after_reloads;
+    options.screenshot = args.screenshot;
+    options.screenshot_window = args.screenshot_window;
+    return viewer::runViewer(options);
+}
+
+int runWatch(const WatchArgs& args) {
+    std::string labs_root, submission;
+    if (!resolveLabsRoot(args.check.common, &labs_root)) return 2;
+    if (!studentLabFolder(args.check.submission, labs_root, args.check.lab, &submission)) return 2;
+    viewer::FolderWatch watch((fs::path(submission) / args.check.lab).string());
+    int checks = 0;
+    for (;;) {
+        const int code = runCheck(args.check);
+        ++checks;
+        if (code == 2 || (args.max_checks > 0 && checks >= args.max_checks)) return code;
+        std::printf("watch: waiting for you to save a file in %s (Ctrl-C stops)\n",
+                    (fs::path(submission) / args.check.lab).string().c_str());
+        std::fflush(stdout);
+        while (!watch.poll()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        std::string names;
+        for (const std::string& f : watch.changedFiles()) names += (names.empty() ? "" : ", ") + f;
+        std::printf("\nwatch: %s changed; checking again\n", names.c_str());
+        std::fflush(stdout);
+    }
+}
+
+}  // namespace shaderlab::cli
