@@ -1,6 +1,7 @@
 // The goldens stored in labs/*/golden/ are what the reference solutions render today. When this
 // fails, run `build/framework/shaderlab goldens` and commit the result (never edit them by hand).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -27,7 +28,9 @@ std::set<std::string> filesIn(const fs::path& dir) {
 }
 
 TEST(Goldens, UpToDate) {
-    const fs::path fresh = fs::temp_directory_path() / "shaderlab_goldens_fresh";
+    // Per process: several checkouts may run this test at once.
+    const fs::path fresh =
+        fs::temp_directory_path() / ("shaderlab_goldens_fresh_" + std::to_string(getpid()));
     fs::remove_all(fresh);
     const std::string cmd =
         std::string(SHADERLAB_CLI) + " goldens --no-hints --into " + fresh.string() + " > /dev/null";
@@ -46,6 +49,7 @@ TEST(Goldens, UpToDate) {
         }
     }
     EXPECT_GT(compared, 0);
+    fs::remove_all(fresh);
 }
 
 }  // namespace

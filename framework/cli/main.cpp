@@ -120,9 +120,7 @@ int main(int argc, char** argv) {
     watch_cmd->add_option("--out", watch.check.out_dir,
                           "where images and the report go (default: out/check)");
     watch_cmd->add_flag("--no-reference", watch.check.no_reference, "use the stored golden images");
-    watch_cmd->add_option("--timeout", watch.check.timeout_s, "seconds the lab may take to render")
-        ->check(CLI::Range(0.1, 86400.0))
-        ->capture_default_str();
+    add_limits(watch_cmd, &watch.check.limits, "seconds the lab may take to draw its scenes");
     watch_cmd->add_option("--max-checks", watch.max_checks, "stop after N checks (default: until Ctrl-C)")
         ->check(CLI::Range(1, 1000000));
     watch_cmd->add_option("--backend", watch.check.common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
