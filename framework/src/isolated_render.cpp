@@ -132,7 +132,8 @@ bool readBytes(const fs::path& p, void* data, std::size_t n) {
                                   {"height", p.color.height},
                                   {"file", stem}});
             }
-            scenes.push_back({{"scene", s.scene}, {"render_ms", s.render_ms}, {"passes", passes}});
+            scenes.push_back(
+                {{"scene", s.scene}, {"render_ms", s.render_ms}, {"passes", passes}, {"error", s.error}});
         }
         result["scenes"] = scenes;
     }
@@ -204,6 +205,7 @@ bool readChildResult(const fs::path& dir, IsolatedRender* out) {
         SceneRender scene;
         scene.scene = s.value("scene", "");
         scene.render_ms = s.value("render_ms", 0.0);
+        scene.error = s.value("error", "");
         for (const json& p : s.value("passes", json::array())) {
             PassImage img;
             img.pass = p.value("pass", "");
