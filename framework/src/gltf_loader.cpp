@@ -307,9 +307,10 @@ std::vector<std::string> stringArray(const nlohmann::json& doc, const char* key)
     return out;
 }
 
-// Checks the extensions and returns the JSON tinygltf should parse: the file's own, or, for
-// meshopt files, a copy whose fallback buffers (declared without data, since every view in them
-// is compressed elsewhere) carry three placeholder bytes that tinygltf accepts. Empty: unchanged.
+// Checks the extensions and returns the JSON tinygltf should parse: the file's own, or a copy
+// where meshopt fallback buffers (declared without data, since every view in them is compressed
+// elsewhere) carry three placeholder bytes and Draco primitives lose their data-less indices
+// accessor, both of which tinygltf would otherwise refuse. Empty: unchanged.
 std::string checkExtensions(const char* begin, const char* end, std::vector<std::string>* warnings,
                             std::set<int>* fallback_buffers) {
     nlohmann::json doc = nlohmann::json::parse(begin, end, nullptr, false);
@@ -327,10 +328,29 @@ std::string checkExtensions(const char* begin, const char* end, std::vector<std:
         warnings->push_back("extension " + inQuotes(ext) +
                             " is ignored: what it adds is not passed to the shaders");
     }
-    if (std::find(used.begin(), used.end(), kMeshopt) == used.end()) return "";
-    auto buffers = doc.find("buffers");
-    if (buffers == doc.end() || !buffers->is_array()) return "";
     bool changed = false;
+    // A Draco primitive's indices accessor has no bufferView (its indices are in the compressed
+    // data), which tinygltf 2.7.0 rejects; the indices come from the Draco decoder anyway.
+    const auto uses = [&used](const char* ext) {
+        return std::find(used.begin(), used.end(), ext) != used.end();
+    };
+    auto meshes = doc.find("meshes");
+    if (uses(kDraco) && meshes != doc.end() && meshes->is_array()) {
+        for (nlohmann::json& mesh : *meshes) {
+            auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+            if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
+            for (nlohmann::json& prim : *prims) {
+                if (!prim.is_object() || !prim.contains("indices")) continue;
+                const auto e = prim.find("extensions");
+                if (e != prim.end() && e->is_object() && e->contains(kDraco)) {
+                    prim.erase("indices");
+                    changed = true;
+                }
+            }
+        }
+    }
+    auto buffers = doc.find("buffers");
+    if (!uses(kMeshopt) || buffers == doc.end() || !buffers->is_array()) return changed ? doc.dump() : "";
     for (std::size_t i = 0; i < buffers->size(); ++i) {
         nlohmann::json& buffer = (*buffers)[i];
         if (!buffer.is_object() || buffer.contains("uri")) continue;
