@@ -1689,6 +1689,17 @@ void Converter::run() {
 }  // namespace
 
 SceneLoadResult loadGltfScene(const std::string& path, Scene* out) {
+    const FileText file = readFile(path, kMaxFileBytes);
+    if (!file.ok) {
+        SceneLoadResult result;
+        result.error = file.error.rfind(path, 0) == 0 ? file.error : path + ": " + file.error;
+        if (out) *out = Scene{};
+        return result;
+    }
+    return loadGltfSceneFromBytes(file.text, path, out);
+}
+
+SceneLoadResult loadGltfSceneFromBytes(const std::string& bytes, const std::string& path, Scene* out) {
     SceneLoadResult result;
     if (out == nullptr) {
         result.error = path + ": no Scene to load into";
@@ -1696,9 +1707,8 @@ SceneLoadResult loadGltfScene(const std::string& path, Scene* out) {
     }
     *out = Scene{};
     try {
-        const FileText file = readFile(path, kMaxFileBytes);
-        if (!file.ok) fail(file.error.rfind(path, 0) == 0 ? file.error.substr(path.size() + 2) : file.error);
-        const std::string& bytes = file.text;
+        if (bytes.size() > kMaxFileBytes)
+            fail("file is larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
         if (bytes.empty()) fail("file is empty");
 
         FsGuard guard;
