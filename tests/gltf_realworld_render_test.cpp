@@ -177,9 +177,9 @@ TEST_F(GltfRealWorldRender, EachFileDrawsLikeItsTwinAndABadSceneFailsAlone) {
     bool skin_warning = false, error_named = false;
     for (const auto& d : r.diagnostics) {
         skin_warning =
-            skin_warning || (d.file == "scenes/skinned_morphed_cube.gltf" && d.severity == "warning" &&
+            skin_warning || (d.file == "../scenes/skinned_morphed_cube.gltf" && d.severity == "warning" &&
                              d.message.find("bind pose") != std::string::npos);
-        error_named = error_named || (d.file == "scenes/basisu_textures.gltf" && d.severity == "error");
+        error_named = error_named || (d.file == "../scenes/basisu_textures.gltf" && d.severity == "error");
     }
     EXPECT_TRUE(skin_warning);
     EXPECT_TRUE(error_named);

@@ -708,7 +708,8 @@ const LabRunner::LoadedScene* LabRunner::loadScene(const SceneSpec& scene_spec) 
     const SceneLoadResult r = loadGltfScene(path, &loaded.scene);
     // The loader's warnings are the lab author's to read (a skipped primitive, an ignored
     // extension), never dropped; a file that does not load fails this scene only.
-    for (const std::string& w : r.warnings) warnOnce(scene_spec.file, w);
+    // Named from the lab folder, as every diagnostic file is: scene files sit beside the labs.
+    for (const std::string& w : r.warnings) warnOnce("../" + scene_spec.file, w);
     if (!r.ok) {
         loaded.error = r.error;
         return &scenes_.emplace(path, std::move(loaded)).first->second;
@@ -916,7 +917,7 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
         SceneRender failed;
         failed.scene = scene_spec.name;
         failed.error = scene->error;
-        out_.diagnostics.push_back({scene_spec.file, 0, 0, "error", scene->error});
+        out_.diagnostics.push_back({"../" + scene_spec.file, 0, 0, "error", scene->error});
         report("done " + scene_spec.name + " 0.0");
         out_.scenes.push_back(std::move(failed));
         return true;
