@@ -137,9 +137,9 @@ TEST_F(GltfRealWorldRender, EachFileDrawsLikeItsTwinAndABadSceneFailsAlone) {
                            "interleaved_cube_twin.gltf", "instanced_cubes.gltf", "instanced_cubes_twin.gltf",
                            "basisu_textures.gltf", "draco_cube.glb", "meshopt_cube.glb",
                            "meshopt_quantized_cube.glb", "compressed_cube_twin.glb", "double_sided_quad.gltf",
-                           "strip_fan.gltf", "skinned_morphed_cube.gltf"});
+                           "strip_fan.gltf", "skinned_morphed_cube.gltf", "spot_light_ortho_camera.gltf"});
     ASSERT_EQ(r.status, shaderlab::RenderStatus::Ok) << r.message;
-    ASSERT_EQ(r.scenes.size(), 14u);
+    ASSERT_EQ(r.scenes.size(), 15u);
     const auto* bad = scene(r, "basisu_textures");
     ASSERT_TRUE(bad);
     EXPECT_NE(bad->error.find("requires extension 'KHR_texture_basisu'"), std::string::npos) << bad->error;
@@ -172,6 +172,11 @@ TEST_F(GltfRealWorldRender, EachFileDrawsLikeItsTwinAndABadSceneFailsAlone) {
     }
     if (const auto* s = scene(r, "skinned_morphed_cube")) {
         EXPECT_GT(covered(*s), 200);
+    }
+    // The file's orthographic camera (2 units tall) looking at the unit cube face on: a square
+    // half the image high, whatever the distance.
+    if (const auto* s = scene(r, "spot_light_ortho_camera")) {
+        EXPECT_NEAR(covered(*s), 32 * 32, 2 * 64);
     }
     // The loader's warnings reach the lab author, naming the scene file.
     bool skin_warning = false, error_named = false;
