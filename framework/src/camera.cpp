@@ -38,8 +38,15 @@ std::vector<ResolvedLight> resolveLights(const Scene& scene, const SceneSpec& sp
         for (const LightSpec& l : *spec.lights)
             add(l.type == "directional", l.position, l.direction, l.color * l.intensity);
     } else {
-        for (const Light& l : scene.lights)
+        for (const Light& l : scene.lights) {
             add(l.type == LightType::Directional, l.position, l.direction, l.color * l.intensity);
+            out.back().range = l.range;
+            if (l.type == LightType::Spot) {
+                const float cos_inner = std::cos(l.inner_cone), cos_outer = std::cos(l.outer_cone);
+                const float scale = 1.0f / std::max(0.001f, cos_inner - cos_outer);
+                out.back().cone = glm::vec2(scale, -cos_outer * scale);
+            }
+        }
     }
     if (out.empty()) add(false, camera.position + glm::vec3(0.0f, 2.0f, 0.0f), {}, glm::vec3(1.0f));
     return out;
@@ -99,6 +106,8 @@ std::string applyCameraOverride(const Scene& scene, const std::vector<ResolvedLi
     if (moved && !o.up &&
         std::abs(glm::dot(glm::normalize(c->target - c->position), glm::normalize(c->up))) > 0.999f)
         c->up = upFor(c->target - c->position);
+    // The default framing no longer holds once the lab places or shapes the camera itself.
+    if (moved || o.fov_y_deg || o.height || o.projection) c->fit_both_axes = false;
     if (moved) fitDepthRange(scene, c);
     if (o.z_near) c->z_near = *o.z_near;
     if (o.z_far) c->z_far = *o.z_far;
@@ -132,11 +141,16 @@ void orbitCamera(const Scene& scene, const CameraOrbit& orbit, Camera* c) {
 glm::mat4 viewMatrix(const Camera& camera) { return glm::lookAt(camera.position, camera.target, camera.up); }
 
 glm::mat4 projectionMatrix(const Camera& camera, float aspect) {
+    // A default framing fits the bounding sphere vertically; on a target taller than wide the
+    // horizontal extent is the smaller one, so the vertical one grows until the sphere fits across.
+    const bool widen = camera.fit_both_axes && aspect > 0.0f && aspect < 1.0f;
     if (camera.orthographic) {
-        const float h = 0.5f * camera.ortho_height, w = h * aspect;
+        const float h = 0.5f * camera.ortho_height / (widen ? aspect : 1.0f), w = h * aspect;
         return glm::ortho(-w, w, -h, h, camera.z_near, camera.z_far);
     }
-    return glm::perspective(glm::radians(camera.fov_y_deg), aspect, camera.z_near, camera.z_far);
+    float fov_y = glm::radians(camera.fov_y_deg);
+    if (widen) fov_y = 2.0f * std::atan(std::tan(0.5f * fov_y) / aspect);
+    return glm::perspective(fov_y, aspect, camera.z_near, camera.z_far);
 }
 
 }  // namespace shaderlab

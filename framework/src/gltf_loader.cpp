@@ -4,23 +4,31 @@
 // done here, and every index, offset, length and stride is checked before a byte is read, so a
 // malformed or hostile file ends as an error "<path>: <problem>", never as a crash or an
 // out-of-bounds read. The file itself is read here (not by tinygltf) so that the GLB chunk layout
-// can be checked first, and tinygltf reaches external files only through callbacks that refuse
-// anything outside the scene's folder.
+// and `extensionsRequired` can be checked first, and tinygltf reaches external files only through
+// callbacks that refuse anything outside the scene's folder.
 //
 // What it does: the default scene (or scene 0, or every root node), node transforms composed
-// (matrix or TRS), triangle-list primitives with POSITION / NORMAL / TEXCOORD_0 and any index
-// type, sparse accessors, flat normals when NORMAL is absent, base colour factors, the first
-// perspective camera, KHR_lights_punctual lights, world-space bounds.
-// What it does not: images and textures (never decoded: an image decoder fed untrusted bytes is
-// attack surface the labs do not need), skins, morph targets, animations, points/lines/strips/
-// fans (skipped with a warning), orthographic cameras (skipped with a warning), spot cone
-// angles (scene.h has no field for them), Draco or quantized meshes.
+// (matrix or TRS, mirroring ones flagged), triangle lists, strips and fans (converted to lists),
+// POSITION / NORMAL / TEXCOORD_0 / TEXCOORD_1 / COLOR_0 / TANGENT with any layout the
+// specification allows (KHR_mesh_quantization included), sparse accessors, interleaved views,
+// Draco (KHR_draco_mesh_compression, decoded with libdraco) and meshopt (EXT_meshopt_compression,
+// decoded with libmeshoptimizer) compressed data, EXT_mesh_gpu_instancing (one draw item per
+// instance), flat normals when NORMAL is absent, MikkTSpace tangents when TANGENT is absent,
+// metallic-roughness materials (factors and texture references), the first camera (perspective
+// or orthographic), KHR_lights_punctual lights with spot cones, world-space bounds.
+// What it does not: decode images (an image decoder fed untrusted bytes is attack surface the
+// labs do not need; textures are recorded by reference only), skins and morph targets (drawn in
+// their bind pose, with a warning), animations, points and lines (refused with a warning), any
+// other required extension (refused, naming it; docs/scenes.md lists them).
 // Buffers are read as little-endian, which is what glTF stores and what the hosts we run on are.
 #include "shaderlab/gltf_loader.h"
 
+#include <draco/compression/decode.h>
+#include <meshoptimizer.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -29,14 +37,17 @@
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
+#include <memory>
 #include <new>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "shaderlab/paths.h"
+#include "tangent_space.h"
 
 namespace fs = std::filesystem;
 
@@ -250,6 +261,126 @@ void checkJson(const char* begin, const char* end) {
     fail("not valid glTF JSON");
 }
 
+// ---------------------------------------------------------------------------------------------
+// Extensions. `extensionsRequired` is read from the JSON before tinygltf decodes anything, so a
+// file that cannot be drawn right is refused with the extension's name and what to do, rather
+// than with whatever tinygltf or the accessor checks would trip over first.
+
+constexpr const char* kDraco = "KHR_draco_mesh_compression";
+constexpr const char* kMeshopt = "EXT_meshopt_compression";
+constexpr const char* kQuantization = "KHR_mesh_quantization";
+constexpr const char* kInstancing = "EXT_mesh_gpu_instancing";
+constexpr const char* kLights = "KHR_lights_punctual";
+
+// Extensions the loader implements in full.
+bool implemented(const std::string& ext) {
+    return ext == kDraco || ext == kMeshopt || ext == kQuantization || ext == kInstancing || ext == kLights;
+}
+
+// Extensions that only change shading or texture lookups, which the lab's shaders do: the file
+// still draws right without them, so they load with a warning even when required.
+bool shadingOnly(const std::string& ext) {
+    return ext.rfind("KHR_materials_", 0) == 0 || ext == "KHR_texture_transform";
+}
+
+std::string refusalAdvice(const std::string& ext) {
+    if (ext == "KHR_texture_basisu" || ext == "EXT_texture_webp" || ext == "EXT_texture_avif" ||
+        ext == "MSFT_texture_dds") {
+        return "its textures use an image format shaderlab does not read; re-export the scene with "
+               "PNG or JPEG textures (Blender's glTF exporter, or gltf-transform's png/jpeg commands)";
+    }
+    if (ext == "KHR_meshopt_compression" || ext == "MSFT_lod") {
+        return "shaderlab cannot read its geometry; re-export the scene without it";
+    }
+    return "shaderlab does not implement it; re-export the scene without it (docs/scenes.md lists the "
+           "extensions shaderlab reads)";
+}
+
+// Strings of a top-level array such as "extensionsRequired"; a malformed entry is left to
+// tinygltf's own checks.
+std::vector<std::string> stringArray(const nlohmann::json& doc, const char* key) {
+    std::vector<std::string> out;
+    const auto it = doc.find(key);
+    if (it == doc.end() || !it->is_array()) return out;
+    for (const auto& v : *it)
+        if (v.is_string()) out.push_back(v.get<std::string>());
+    return out;
+}
+
+// Checks the extensions and returns the JSON tinygltf should parse: the file's own, or a copy
+// where meshopt fallback buffers (declared without data, since every view in them is compressed
+// elsewhere) carry three placeholder bytes and Draco primitives lose their data-less indices
+// accessor, both of which tinygltf would otherwise refuse. Empty: unchanged.
+std::string checkExtensions(const char* begin, const char* end, std::vector<std::string>* warnings,
+                            std::set<int>* fallback_buffers) {
+    nlohmann::json doc = nlohmann::json::parse(begin, end, nullptr, false);
+    if (!doc.is_object()) return "";
+    const std::vector<std::string> required = stringArray(doc, "extensionsRequired");
+    for (const std::string& ext : required) {
+        if (implemented(ext) || shadingOnly(ext)) continue;
+        fail("requires extension " + inQuotes(ext) + ": " + refusalAdvice(ext));
+    }
+    std::vector<std::string> used = stringArray(doc, "extensionsUsed");
+    used.insert(used.end(), required.begin(), required.end());
+    std::set<std::string> warned;
+    for (const std::string& ext : used) {
+        if (implemented(ext) || !warned.insert(ext).second) continue;
+        warnings->push_back("extension " + inQuotes(ext) +
+                            " is ignored: what it adds is not passed to the shaders");
+    }
+    bool changed = false;
+    // A Draco primitive's indices accessor has no bufferView (its indices are in the compressed
+    // data), which tinygltf 2.7.0 rejects; the indices come from the Draco decoder anyway.
+    const auto uses = [&used](const char* ext) {
+        return std::find(used.begin(), used.end(), ext) != used.end();
+    };
+    auto meshes = doc.find("meshes");
+    if (uses(kDraco) && meshes != doc.end() && meshes->is_array()) {
+        for (nlohmann::json& mesh : *meshes) {
+            auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+            if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
+            for (nlohmann::json& prim : *prims) {
+                if (!prim.is_object() || !prim.contains("indices")) continue;
+                const auto e = prim.find("extensions");
+                if (e != prim.end() && e->is_object() && e->contains(kDraco)) {
+                    prim.erase("indices");
+                    changed = true;
+                }
+            }
+        }
+    }
+    auto buffers = doc.find("buffers");
+    if (!uses(kMeshopt) || buffers == doc.end() || !buffers->is_array()) return changed ? doc.dump() : "";
+    for (std::size_t i = 0; i < buffers->size(); ++i) {
+        nlohmann::json& buffer = (*buffers)[i];
+        if (!buffer.is_object() || buffer.contains("uri")) continue;
+        const nlohmann::json* ext = nullptr;
+        if (const auto e = buffer.find("extensions"); e != buffer.end() && e->is_object())
+            if (const auto m = e->find(kMeshopt); m != e->end() && m->is_object()) ext = &*m;
+        if (!ext || !ext->value("fallback", false)) continue;
+        buffer["uri"] = "data:application/octet-stream;base64,AAAA";
+        buffer["byteLength"] = 3;
+        fallback_buffers->insert(static_cast<int>(i));
+        changed = true;
+    }
+    return changed ? doc.dump() : "";
+}
+
+// A GLB with its JSON chunk replaced (padded with spaces to 4 bytes, as the container requires).
+std::string replaceGlbJson(const std::string& glb, std::size_t length, const std::string& json) {
+    const std::size_t old_json = readU32(glb, 12);
+    std::string padded = json;
+    padded.append((4 - padded.size() % 4) % 4, ' ');
+    const std::string rest = glb.substr(20 + old_json, length - 20 - old_json);
+    std::string out = glb.substr(0, 12);
+    const auto put = [&out](std::uint32_t v, std::size_t at) { std::memcpy(&out[at], &v, 4); };
+    out.resize(20);
+    put(static_cast<std::uint32_t>(20 + padded.size() + rest.size()), 8);
+    put(static_cast<std::uint32_t>(padded.size()), 12);
+    put(0x4E4F534Au, 16);
+    return out + padded + rest;
+}
+
 // tinygltf reports several problems as lines in one string.
 void appendLines(const std::string& text, const std::string& prefix, std::vector<std::string>* out) {
     std::istringstream in(text);
@@ -380,40 +511,79 @@ double readComponent(const unsigned char* p, int component_type, bool normalized
     }
 }
 
-// What an accessor is used for decides which layouts are accepted (glTF 2.0 spec, 3.7.2.1).
-enum class Use { Vec3Float, Texcoord, Indices };
+// What an accessor is used for decides which layouts are accepted (glTF 2.0 spec, 3.7.2.1;
+// KHR_mesh_quantization widens the integer layouts of positions, normals, tangents, texcoords and
+// instance transforms).
+enum class Use { Position, Normal, Tangent, Texcoord, Color, Indices, Translation, Rotation, Scale };
 
-bool layoutAllowed(Use use, int type, int component_type, bool normalized) {
+bool isComponent(int ct, std::initializer_list<int> allowed) {
+    return std::find(allowed.begin(), allowed.end(), ct) != allowed.end();
+}
+
+bool layoutAllowed(Use use, int type, int ct, bool normalized, bool quantized) {
+    constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE, kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT, kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    const bool any_small_int = isComponent(ct, {kByte, kUByte, kShort, kUShort});
+    const bool signed_normalized = normalized && isComponent(ct, {kByte, kShort});
     switch (use) {
-        case Use::Vec3Float:
-            return type == TINYGLTF_TYPE_VEC3 && component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
+        case Use::Position:
+        case Use::Translation:
+        case Use::Scale:
+            return type == TINYGLTF_TYPE_VEC3 && (ct == kFloat || (quantized && any_small_int));
+        case Use::Normal:
+            return type == TINYGLTF_TYPE_VEC3 && (ct == kFloat || (quantized && signed_normalized));
+        case Use::Tangent:
+            return type == TINYGLTF_TYPE_VEC4 && (ct == kFloat || (quantized && signed_normalized));
+        case Use::Rotation:
+            return type == TINYGLTF_TYPE_VEC4 && (ct == kFloat || signed_normalized);
         case Use::Texcoord:
             return type == TINYGLTF_TYPE_VEC2 &&
-                   (component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                    (normalized && (component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                    component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+                   (ct == kFloat || (normalized && isComponent(ct, {kUByte, kUShort})) ||
+                    (quantized && any_small_int));
+        case Use::Color:
+            return (type == TINYGLTF_TYPE_VEC3 || type == TINYGLTF_TYPE_VEC4) &&
+                   (ct == kFloat || (normalized && isComponent(ct, {kUByte, kUShort})));
         case Use::Indices:
             return type == TINYGLTF_TYPE_SCALAR && !normalized &&
-                   (component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                    component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
-                    component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+                   isComponent(ct, {kUByte, kUShort, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
     }
     return false;
 }
 
 const char* layoutExpected(Use use) {
     switch (use) {
-        case Use::Vec3Float:
+        case Use::Position:
+        case Use::Normal:
+        case Use::Translation:
+        case Use::Scale:
             return "VEC3 of FLOAT";
+        case Use::Tangent:
+            return "VEC4 of FLOAT";
+        case Use::Rotation:
+            return "VEC4 of FLOAT, or of normalized BYTE / SHORT";
         case Use::Texcoord:
             return "VEC2 of FLOAT, or of normalized UNSIGNED_BYTE / UNSIGNED_SHORT";
+        case Use::Color:
+            return "VEC3 or VEC4 of FLOAT, or of normalized UNSIGNED_BYTE / UNSIGNED_SHORT";
         case Use::Indices:
             return "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT";
     }
     return "";
 }
 
-int componentCount(Use use) { return use == Use::Vec3Float ? 3 : use == Use::Texcoord ? 2 : 1; }
+std::size_t typeComponents(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_VEC2:
+            return 2;
+        case TINYGLTF_TYPE_VEC3:
+            return 3;
+        case TINYGLTF_TYPE_VEC4:
+            return 4;
+        default:
+            return 1;
+    }
+}
 
 struct Bytes {
     const unsigned char* data = nullptr;
@@ -422,23 +592,34 @@ struct Bytes {
 
 class Converter {
   public:
-    Converter(const tinygltf::Model& model, Scene* scene, std::vector<std::string>* warnings)
-        : model_(model), scene_(*scene), warnings_(*warnings) {}
+    Converter(const tinygltf::Model& model, Scene* scene, std::vector<std::string>* warnings,
+              std::set<int> fallback_buffers)
+        : model_(model),
+          scene_(*scene),
+          warnings_(*warnings),
+          fallback_buffers_(std::move(fallback_buffers)) {}
 
     void run();
 
   private:
-    // Validates bufferView `index` and the buffer it lies in; `who` names the referrer.
+    // Validates bufferView `index` and the buffer it lies in; `who` names the referrer. A view
+    // compressed with EXT_meshopt_compression answers with its decoded bytes.
     Bytes bufferView(int index, const std::string& who) const {
         if (index < 0 || static_cast<std::size_t>(index) >= model_.bufferViews.size()) {
             fail(who + ": bufferView " + std::to_string(index) + " does not exist (the file has " +
                  std::to_string(model_.bufferViews.size()) + ")");
         }
+        if (const auto it = decoded_views_.find(index); it != decoded_views_.end())
+            return Bytes{it->second.data(), it->second.size()};
         const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(index)];
         const std::string name = "bufferView " + std::to_string(index);
         if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model_.buffers.size()) {
             fail(name + ": buffer " + std::to_string(view.buffer) + " does not exist (the file has " +
                  std::to_string(model_.buffers.size()) + ")");
+        }
+        if (fallback_buffers_.count(view.buffer)) {
+            fail(name + " lies in buffer " + std::to_string(view.buffer) +
+                 ", a meshopt fallback buffer without data, and is not itself meshopt-compressed");
         }
         const auto& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
         if (view.byteLength > data.size() || view.byteOffset > data.size() - view.byteLength) {
@@ -448,19 +629,22 @@ class Converter {
         return Bytes{data.data() + view.byteOffset, view.byteLength};
     }
 
-    // Decodes accessor `index` into `out` (count * components values) after checking that every
-    // element it names lies inside its bufferView. `role` reads like "POSITION of mesh 'torus'".
+    // Decodes accessor `index` into `out` (count * components values, components from the
+    // accessor's type) after checking that every element it names lies inside its bufferView.
+    // `role` reads like "POSITION of mesh 'torus'".
     template <typename T>
-    std::size_t readAccessor(int index, const std::string& role, Use use, std::vector<T>* out) const {
+    std::size_t readAccessor(int index, const std::string& role, Use use, std::vector<T>* out,
+                             std::size_t* components_out = nullptr) const {
         if (index < 0 || static_cast<std::size_t>(index) >= model_.accessors.size()) {
             fail("accessor " + std::to_string(index) + " (" + role + ") does not exist (the file has " +
                  std::to_string(model_.accessors.size()) + ")");
         }
         const tinygltf::Accessor& acc = model_.accessors[static_cast<std::size_t>(index)];
         const std::string who = "accessor " + std::to_string(index) + " (" + role + ")";
-        if (!layoutAllowed(use, acc.type, acc.componentType, acc.normalized)) {
+        if (!layoutAllowed(use, acc.type, acc.componentType, acc.normalized, quantized_)) {
             fail(who + ": is " + typeName(acc.type) + " of " + (acc.normalized ? "normalized " : "") +
-                 componentTypeName(acc.componentType) + ", expected " + layoutExpected(use));
+                 componentTypeName(acc.componentType) + ", expected " + layoutExpected(use) +
+                 (quantized_ ? " (or a KHR_mesh_quantization layout)" : ""));
         }
         const std::size_t limit = use == Use::Indices ? kMaxIndices : kMaxVertices;
         if (acc.count == 0) fail(who + ": count is 0");
@@ -468,7 +652,8 @@ class Converter {
             fail(who + ": count " + std::to_string(acc.count) + " is over the limit of " +
                  std::to_string(limit));
         }
-        const std::size_t components = static_cast<std::size_t>(componentCount(use));
+        const std::size_t components = typeComponents(acc.type);
+        if (components_out) *components_out = components;
         const std::size_t comp_size = componentSize(acc.componentType);
         const std::size_t element = comp_size * components;
         out->assign(acc.count * components, T{});
@@ -479,8 +664,7 @@ class Converter {
         }
         if (acc.bufferView != -1) {
             const Bytes view = bufferView(acc.bufferView, who);
-            const std::size_t declared =
-                model_.bufferViews[static_cast<std::size_t>(acc.bufferView)].byteStride;
+            const std::size_t declared = viewStride(acc.bufferView);
             if (declared != 0 && (declared < element || declared > 252 || declared % 4 != 0)) {
                 fail(who + ": byteStride " + std::to_string(declared) + " of bufferView " +
                      std::to_string(acc.bufferView) + " is invalid for " + std::to_string(element) +
@@ -507,6 +691,13 @@ class Converter {
 
         if (acc.sparse.isSparse) applySparse(acc, who, components, comp_size, out);
         return acc.count;
+    }
+
+    // A view's byteStride; a meshopt-compressed view's is its extension's.
+    std::size_t viewStride(int index) const {
+        const auto it = meshopt_strides_.find(index);
+        if (it != meshopt_strides_.end()) return it->second;
+        return model_.bufferViews[static_cast<std::size_t>(index)].byteStride;
     }
 
     // Overwrites the elements a sparse accessor names (spec 3.6.2.3): indices strictly
@@ -567,7 +758,12 @@ class Converter {
         return name.empty() ? "mesh " + std::to_string(mesh_index) : "mesh " + inQuotes(name);
     }
 
+    void decodeMeshoptViews();
+    void decodeDraco(const tinygltf::Primitive& prim, const std::string& where,
+                     std::map<std::string, std::pair<std::vector<float>, std::size_t>>* attributes,
+                     std::vector<std::uint32_t>* indices, bool* has_indices) const;
     int convertPrimitive(std::size_t mesh_index, std::size_t prim_index);
+    std::vector<glm::mat4> instanceTransforms(std::size_t node_index) const;
     void convertMaterials();
     glm::mat4 localMatrix(std::size_t node_index) const;
     glm::mat4 localMatrixUnchecked(std::size_t node_index) const;
@@ -582,6 +778,11 @@ class Converter {
     const tinygltf::Model& model_;
     Scene& scene_;
     std::vector<std::string>& warnings_;
+    std::set<int> fallback_buffers_;
+    bool quantized_ = false;                                   // KHR_mesh_quantization is used
+    std::map<int, std::vector<unsigned char>> decoded_views_;  // meshopt view -> its bytes
+    std::map<int, std::size_t> meshopt_strides_;
+    std::set<std::string> warned_;                                  // one warning per kind and mesh
     std::map<std::pair<std::size_t, std::size_t>, int> converted_;  // (mesh, primitive) -> Scene mesh
     std::size_t total_vertices_ = 0;
     std::size_t total_indices_ = 0;
@@ -612,6 +813,175 @@ glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
     return len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
+// A whole number from an extension object; `fallback` when absent and not required.
+std::uint64_t extensionNumber(const tinygltf::Value& object, const char* key, const std::string& who,
+                              bool required, std::uint64_t fallback = 0) {
+    if (!object.Has(key)) {
+        if (required) fail(who + ": \"" + key + "\" is missing");
+        return fallback;
+    }
+    const tinygltf::Value& v = object.Get(key);
+    const double d = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+    if (!(d >= 0.0) || d != std::floor(d) || d > 9.0e15) {
+        fail(who + ": \"" + key + "\" must be a whole number >= 0");
+    }
+    return static_cast<std::uint64_t>(d);
+}
+
+std::string extensionString(const tinygltf::Value& object, const char* key, const std::string& who,
+                            const std::string& fallback) {
+    if (!object.Has(key)) return fallback;
+    const tinygltf::Value& v = object.Get(key);
+    if (!v.IsString()) fail(who + ": \"" + key + "\" must be a string");
+    return v.Get<std::string>();
+}
+
+// EXT_meshopt_compression: every compressed view is decoded once, up front, with the decoder and
+// filters of libmeshoptimizer (which is written to be safe on untrusted input; its parameter
+// asserts are checked here first).
+void Converter::decodeMeshoptViews() {
+    constexpr std::uint64_t kMaxDecodedBytes = std::uint64_t{512} << 20;
+    std::uint64_t total = 0;
+    for (std::size_t i = 0; i < model_.bufferViews.size(); ++i) {
+        const tinygltf::BufferView& view = model_.bufferViews[i];
+        const auto ext = view.extensions.find(kMeshopt);
+        if (ext == view.extensions.end()) continue;
+        const tinygltf::Value& e = ext->second;
+        const std::string who = "bufferView " + std::to_string(i) + " (" + kMeshopt + ")";
+        if (!e.IsObject()) fail(who + ": the extension must be an object");
+        const std::uint64_t buffer = extensionNumber(e, "buffer", who, true);
+        const std::uint64_t offset = extensionNumber(e, "byteOffset", who, false, 0);
+        const std::uint64_t length = extensionNumber(e, "byteLength", who, true);
+        const std::uint64_t stride = extensionNumber(e, "byteStride", who, true);
+        const std::uint64_t count = extensionNumber(e, "count", who, true);
+        const std::string mode = extensionString(e, "mode", who, "");
+        const std::string filter = extensionString(e, "filter", who, "NONE");
+        if (buffer >= model_.buffers.size()) {
+            fail(who + ": buffer " + std::to_string(buffer) + " does not exist (the file has " +
+                 std::to_string(model_.buffers.size()) + ")");
+        }
+        if (fallback_buffers_.count(static_cast<int>(buffer)))
+            fail(who + ": its compressed data lies in a fallback buffer, which holds none");
+        const auto& data = model_.buffers[buffer].data;
+        if (length > data.size() || offset > data.size() - length) {
+            fail(who + ": bytes " + byteRange(offset, length) + " lie outside buffer " +
+                 std::to_string(buffer) + " which has " + std::to_string(data.size()) + " bytes");
+        }
+        if (count == 0 || count > kMaxIndices)
+            fail(who + ": count must be in 1.." + std::to_string(kMaxIndices));
+        if (stride == 0 || stride > 256) fail(who + ": byteStride must be in 1..256");
+        total += count * stride;
+        if (total > kMaxDecodedBytes) fail(who + ": the decoded data would exceed 512 MiB");
+        std::vector<unsigned char> out(static_cast<std::size_t>(count * stride));
+        const unsigned char* src = data.data() + offset;
+        int rc = 0;
+        if (mode == "ATTRIBUTES") {
+            if (stride % 4 != 0) fail(who + ": ATTRIBUTES need a byteStride that is a multiple of 4");
+            rc = meshopt_decodeVertexBuffer(out.data(), count, stride, src, length);
+        } else if (mode == "TRIANGLES" || mode == "INDICES") {
+            if (stride != 2 && stride != 4) fail(who + ": " + mode + " need a byteStride of 2 or 4");
+            if (mode == "TRIANGLES" && count % 3 != 0) fail(who + ": TRIANGLES need a count divisible by 3");
+            rc = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(out.data(), count, stride, src, length)
+                                     : meshopt_decodeIndexSequence(out.data(), count, stride, src, length);
+        } else {
+            fail(who + ": unknown mode " + inQuotes(mode) + " (ATTRIBUTES, TRIANGLES or INDICES)");
+        }
+        if (rc != 0)
+            fail(who + ": the compressed data is corrupt (meshopt error " + std::to_string(rc) + ")");
+        if (filter != "NONE" && mode != "ATTRIBUTES")
+            fail(who + ": filter " + inQuotes(filter) + " needs ATTRIBUTES");
+        if (filter == "OCTAHEDRAL") {
+            if (stride != 4 && stride != 8)
+                fail(who + ": the OCTAHEDRAL filter needs a byteStride of 4 or 8");
+            meshopt_decodeFilterOct(out.data(), count, stride);
+        } else if (filter == "QUATERNION") {
+            if (stride != 8) fail(who + ": the QUATERNION filter needs a byteStride of 8");
+            meshopt_decodeFilterQuat(out.data(), count, stride);
+        } else if (filter == "EXPONENTIAL") {
+            meshopt_decodeFilterExp(out.data(), count, stride);
+        } else if (filter != "NONE") {
+            fail(who + ": unknown filter " + inQuotes(filter));
+        }
+        if (mode == "ATTRIBUTES" && view.byteStride == 0) meshopt_strides_[static_cast<int>(i)] = stride;
+        decoded_views_[static_cast<int>(i)] = std::move(out);
+    }
+}
+
+// KHR_draco_mesh_compression: the primitive's geometry is in one Draco-compressed bufferView; its
+// accessors describe the decoded data and name no bufferView. Decoded with libdraco; every
+// attribute comes out as floats (normalized integers scaled as the accessor says).
+void Converter::decodeDraco(const tinygltf::Primitive& prim, const std::string& where,
+                            std::map<std::string, std::pair<std::vector<float>, std::size_t>>* attributes,
+                            std::vector<std::uint32_t>* indices, bool* has_indices) const {
+    const tinygltf::Value& e = prim.extensions.at(kDraco);
+    const std::string who = where + " (" + kDraco + ")";
+    if (!e.IsObject() || !e.Has("attributes") || !e.Get("attributes").IsObject())
+        fail(who + ": the extension needs \"bufferView\" and an \"attributes\" object");
+    const std::uint64_t view_index = extensionNumber(e, "bufferView", who, true);
+    if (view_index > static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
+        fail(who + ": bufferView is out of range");
+    const Bytes bytes = bufferView(static_cast<int>(view_index), who);
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(bytes.data), bytes.size);
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!decoded.ok())
+        fail(who + ": Draco could not decode the data (" + decoded.status().error_msg_string() + ")");
+    const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
+    if (!mesh) fail(who + ": Draco decoded no mesh");
+    const std::size_t points = mesh->num_points();
+    if (points == 0 || points > kMaxVertices) fail(who + ": " + std::to_string(points) + " decoded vertices");
+    if (static_cast<std::uint64_t>(mesh->num_faces()) * 3 > kMaxIndices) fail(who + ": too many faces");
+    const tinygltf::Value& names = e.Get("attributes");
+    for (const std::string& name : names.Keys()) {
+        const tinygltf::Value& id = names.Get(name);
+        if (!id.IsNumber()) fail(who + ": attribute " + inQuotes(name) + " must name a Draco attribute id");
+        const draco::PointAttribute* att =
+            mesh->GetAttributeByUniqueId(static_cast<std::uint32_t>(id.GetNumberAsInt()));
+        if (!att) fail(who + ": attribute " + inQuotes(name) + " names a Draco attribute the data lacks");
+        const int components = att->num_components();
+        if (components < 1 || components > 4)
+            fail(who + ": attribute " + inQuotes(name) + " has " + std::to_string(components) +
+                 " components");
+        std::vector<float> values(points * static_cast<std::size_t>(components));
+        for (std::size_t p = 0; p < points; ++p) {
+            const draco::AttributeValueIndex v =
+                att->mapped_index(draco::PointIndex(static_cast<std::uint32_t>(p)));
+            if (v.value() >= att->size() ||
+                !att->ConvertValue<float>(v, static_cast<std::int8_t>(components),
+                                          &values[p * static_cast<std::size_t>(components)]))
+                fail(who + ": attribute " + inQuotes(name) + " could not be read as numbers");
+        }
+        (*attributes)[name] = {std::move(values), static_cast<std::size_t>(components)};
+    }
+    indices->clear();
+    indices->reserve(static_cast<std::size_t>(mesh->num_faces()) * 3);
+    for (draco::FaceIndex f(0); f < mesh->num_faces(); ++f) {
+        const auto& face = mesh->face(f);
+        for (int k = 0; k < 3; ++k) indices->push_back(face[k].value());
+    }
+    *has_indices = true;
+}
+
+// Triangle-list indices for a primitive's mode; strips and fans as the glTF 2.0 specification
+// (3.7.2.1) numbers their triangles, so the winding of every triangle matches the first's.
+std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& in) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        std::vector<std::uint32_t> out;
+        if (in.size() < 3) return out;
+        out.reserve((in.size() - 2) * 3);
+        for (std::size_t i = 0; i + 2 < in.size(); ++i) {
+            if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+                out.insert(out.end(), {in[i], in[i + 1 + i % 2], in[i + 2 - i % 2]});
+            } else {
+                out.insert(out.end(), {in[i + 1], in[i + 2], in[0]});
+            }
+        }
+        return out;
+    }
+    return in;
+}
+
 int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) {
     const auto key = std::make_pair(mesh_index, prim_index);
     if (const auto it = converted_.find(key); it != converted_.end()) return it->second;
@@ -626,15 +996,44 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
     mesh.name = src.name.empty() ? "mesh" + std::to_string(mesh_index) : src.name;
     if (src.primitives.size() > 1) mesh.name += "#" + std::to_string(prim_index);
 
-    const auto attribute = [&](const char* name) {
-        const auto it = prim.attributes.find(name);
-        return it == prim.attributes.end() ? -1 : it->second;
-    };
     if (prim.attributes.count("POSITION") == 0) fail(where + " has no POSITION attribute");
+    if (!prim.targets.empty() && warned_.insert("morph " + label).second) {
+        warnings_.push_back(where + ": " + std::to_string(prim.targets.size()) +
+                            " morph targets ignored; drawn in its base shape");
+    }
 
+    // Draco-compressed primitives bring their attributes and indices decoded.
+    std::map<std::string, std::pair<std::vector<float>, std::size_t>> draco_attributes;
+    std::vector<std::uint32_t> draco_indices;
+    bool draco = false;
+    if (prim.extensions.count(kDraco) != 0)
+        decodeDraco(prim, where, &draco_attributes, &draco_indices, &draco);
+
+    // Reads attribute `name` as floats; returns its element count, 0 when the primitive has none.
     std::vector<float> values;
-    const std::size_t vertex_count =
-        readAccessor(attribute("POSITION"), std::string("POSITION of ") + label, Use::Vec3Float, &values);
+    const auto read = [&](const char* name, Use use, std::size_t* components) -> std::size_t {
+        const auto it = prim.attributes.find(name);
+        if (it == prim.attributes.end()) return 0;
+        const std::string role = std::string(name) + " of " + label;
+        if (draco) {
+            const auto d = draco_attributes.find(name);
+            if (d != draco_attributes.end()) {
+                values = d->second.first;
+                *components = d->second.second;
+                const std::size_t want = use == Use::Texcoord  ? 2
+                                         : use == Use::Color   ? *components
+                                         : use == Use::Tangent ? 4
+                                                               : 3;
+                if (*components != want || (use == Use::Color && want < 3))
+                    fail(where + ": Draco attribute " + name + " has " + std::to_string(*components) +
+                         " components");
+                return values.size() / *components;
+            }
+        }
+        return readAccessor(it->second, role, use, &values, components);
+    };
+    std::size_t components = 0;
+    const std::size_t vertex_count = read("POSITION", Use::Position, &components);
     if (!std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); })) {
         fail(where + ": POSITION contains non-finite values");
     }
@@ -642,15 +1041,15 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
     for (std::size_t i = 0; i < vertex_count; ++i) {
         mesh.positions[i] = glm::vec3(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
     }
-
-    const int normal_accessor = attribute("NORMAL");
-    if (prim.attributes.count("NORMAL") != 0) {
-        const std::size_t n =
-            readAccessor(normal_accessor, std::string("NORMAL of ") + label, Use::Vec3Float, &values);
+    const auto sameCount = [&](const char* name, std::size_t n) {
         if (n != vertex_count) {
-            fail(where + ": NORMAL has " + std::to_string(n) + " elements but POSITION has " +
+            fail(where + ": " + name + " has " + std::to_string(n) + " elements but POSITION has " +
                  std::to_string(vertex_count));
         }
+    };
+
+    if (const std::size_t n = read("NORMAL", Use::Normal, &components)) {
+        sameCount("NORMAL", n);
         mesh.normals.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
             const glm::vec3 v(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
@@ -661,65 +1060,102 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
         }
     }
 
-    if (prim.attributes.count("TEXCOORD_0") != 0) {
-        const std::size_t n = readAccessor(attribute("TEXCOORD_0"), std::string("TEXCOORD_0 of ") + label,
-                                           Use::Texcoord, &values);
-        if (n != vertex_count) {
-            fail(where + ": TEXCOORD_0 has " + std::to_string(n) + " elements but POSITION has " +
-                 std::to_string(vertex_count));
-        }
-        mesh.texcoords.resize(n);
+    // glTF puts (0, 0) at an image's top-left, OpenGL texture coordinates at the row uploaded
+    // first, which the framework makes the image's bottom row: t = 1 - v keeps an image upright on
+    // a mesh as in a fullscreen pass.
+    const auto texcoords = [&](const char* name, std::vector<glm::vec2>* out) {
+        const std::size_t n = read(name, Use::Texcoord, &components);
+        if (n == 0) return false;
+        sameCount(name, n);
+        out->resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            // glTF puts (0, 0) at an image's top-left, OpenGL texture coordinates at the row
-            // uploaded first, which the framework makes the image's bottom row: t = 1 - v keeps
-            // an image upright on a mesh as in a fullscreen pass.
             const glm::vec2 uv(values[2 * i], 1.0f - values[2 * i + 1]);
-            mesh.texcoords[i] = std::isfinite(uv.x) && std::isfinite(uv.y) ? uv : glm::vec2(0.0f);
+            (*out)[i] = std::isfinite(uv.x) && std::isfinite(uv.y) ? uv : glm::vec2(0.0f);
         }
-        mesh.had_texcoords = true;
-    } else {
-        mesh.texcoords.assign(vertex_count, glm::vec2(0.0f));
+        return true;
+    };
+    mesh.had_texcoords = texcoords("TEXCOORD_0", &mesh.texcoords);
+    if (!mesh.had_texcoords) mesh.texcoords.assign(vertex_count, glm::vec2(0.0f));
+    texcoords("TEXCOORD_1", &mesh.texcoords1);
+
+    if (const std::size_t n = read("COLOR_0", Use::Color, &components)) {
+        sameCount("COLOR_0", n);
+        mesh.colors.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            glm::vec4 c(1.0f);
+            for (std::size_t k = 0; k < components; ++k) c[static_cast<int>(k)] = values[i * components + k];
+            mesh.colors[i] = std::isfinite(c.r + c.g + c.b + c.a) ? c : glm::vec4(1.0f);
+        }
+    }
+    if (const std::size_t n = read("TANGENT", Use::Tangent, &components)) {
+        sameCount("TANGENT", n);
+        mesh.tangents.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const glm::vec3 t(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
+            const float len = glm::length(t);
+            mesh.tangents[i] =
+                glm::vec4(len > 0.0f && std::isfinite(len) ? t / len : glm::vec3(1.0f, 0.0f, 0.0f),
+                          values[4 * i + 3] < 0.0f ? -1.0f : 1.0f);
+        }
+    }
+    for (const auto& [name, accessor] : prim.attributes) {
+        (void)accessor;
+        if ((name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0) &&
+            warned_.insert("skin " + label).second)
+            warnings_.push_back(where + ": skinning attributes ignored; drawn in its bind pose");
     }
 
-    if (prim.indices != -1) {
-        readAccessor(prim.indices, std::string("indices of ") + label, Use::Indices, &mesh.indices);
-        for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
-            if (mesh.indices[i] >= vertex_count) {
-                fail("accessor " + std::to_string(prim.indices) + " (indices of " + label + "): index " +
-                     std::to_string(mesh.indices[i]) + " at position " + std::to_string(i) +
-                     " is out of range: the primitive has " + std::to_string(vertex_count) + " vertices");
-            }
-        }
+    std::vector<std::uint32_t> indices;
+    if (draco) {
+        indices = std::move(draco_indices);
+    } else if (prim.indices != -1) {
+        readAccessor(prim.indices, std::string("indices of ") + label, Use::Indices, &indices);
     } else {
-        mesh.indices.resize(vertex_count);
-        for (std::size_t i = 0; i < vertex_count; ++i) mesh.indices[i] = static_cast<std::uint32_t>(i);
+        indices.resize(vertex_count);
+        for (std::size_t i = 0; i < vertex_count; ++i) indices[i] = static_cast<std::uint32_t>(i);
     }
-    if (mesh.indices.size() % 3 != 0) {
-        fail(where + ": " + std::to_string(mesh.indices.size()) +
-             " indices is not a whole number of triangles");
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+        if (indices[i] >= vertex_count) {
+            fail((draco ? where + " (" + kDraco + ")"
+                        : "accessor " + std::to_string(prim.indices) + " (indices of " + label + ")") +
+                 ": index " + std::to_string(indices[i]) + " at position " + std::to_string(i) +
+                 " is out of range: the primitive has " + std::to_string(vertex_count) + " vertices");
+        }
     }
+    const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0) {
+        fail(where + ": " + std::to_string(indices.size()) + " indices is not a whole number of triangles");
+    }
+    mesh.indices = triangleList(mode, indices);
+    if (mesh.indices.empty()) fail(where + ": fewer than 3 vertices, so no triangle to draw");
 
     if (mesh.normals.empty()) {
         // Flat normals need one vertex per triangle corner: un-share every vertex.
         const std::size_t corners = mesh.indices.size();
         if (corners > kMaxVertices) fail(where + ": too many triangles to generate flat normals");
-        std::vector<glm::vec3> positions(corners);
-        std::vector<glm::vec3> normals(corners);
-        std::vector<glm::vec2> texcoords(corners);
+        const auto unshare = [&](auto* attribute) {
+            if (attribute->empty()) return;
+            std::remove_reference_t<decltype(*attribute)> out(corners);
+            for (std::size_t i = 0; i < corners; ++i) out[i] = (*attribute)[mesh.indices[i]];
+            *attribute = std::move(out);
+        };
+        unshare(&mesh.positions);
+        unshare(&mesh.texcoords);
+        unshare(&mesh.texcoords1);
+        unshare(&mesh.colors);
+        unshare(&mesh.tangents);
+        mesh.normals.resize(corners);
         for (std::size_t t = 0; t < corners; t += 3) {
-            for (std::size_t k = 0; k < 3; ++k) {
-                positions[t + k] = mesh.positions[mesh.indices[t + k]];
-                texcoords[t + k] = mesh.texcoords[mesh.indices[t + k]];
-            }
-            const glm::vec3 n = faceNormal(positions[t], positions[t + 1], positions[t + 2]);
-            normals[t] = normals[t + 1] = normals[t + 2] = n;
+            const glm::vec3 n = faceNormal(mesh.positions[t], mesh.positions[t + 1], mesh.positions[t + 2]);
+            mesh.normals[t] = mesh.normals[t + 1] = mesh.normals[t + 2] = n;
         }
-        mesh.positions = std::move(positions);
-        mesh.normals = std::move(normals);
-        mesh.texcoords = std::move(texcoords);
         for (std::size_t i = 0; i < corners; ++i) mesh.indices[i] = static_cast<std::uint32_t>(i);
         mesh.had_normals = false;
         warnings_.push_back("normals generated flat for " + where);
+    }
+    if (mesh.tangents.empty() && mesh.had_texcoords) {
+        mesh.tangents = generateTangents(mesh.positions, mesh.normals, mesh.texcoords, mesh.indices);
+        mesh.tangents_generated = true;
     }
 
     total_vertices_ += mesh.positions.size();
@@ -736,20 +1172,86 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
 }
 
 void Converter::convertMaterials() {
+    for (std::size_t i = 0; i < model_.textures.size(); ++i) {
+        const tinygltf::Texture& src = model_.textures[i];
+        Texture t;
+        if (src.source >= 0 && static_cast<std::size_t>(src.source) < model_.images.size()) {
+            const tinygltf::Image& image = model_.images[static_cast<std::size_t>(src.source)];
+            t.image_uri = image.uri.rfind("data:", 0) == 0 ? std::string() : image.uri;
+            t.mime_type = image.mimeType;
+        }
+        if (src.sampler >= 0 && static_cast<std::size_t>(src.sampler) < model_.samplers.size()) {
+            const tinygltf::Sampler& sampler = model_.samplers[static_cast<std::size_t>(src.sampler)];
+            t.mag_filter = sampler.magFilter;
+            t.min_filter = sampler.minFilter;
+            t.wrap_s = sampler.wrapS;
+            t.wrap_t = sampler.wrapT;
+        }
+        scene_.textures.push_back(std::move(t));
+    }
+    const auto textureRef = [&](const std::string& who, int index, int texcoord, double scale, bool srgb) {
+        TextureRef ref;
+        if (index < 0) return ref;
+        if (static_cast<std::size_t>(index) >= scene_.textures.size()) {
+            warnings_.push_back(who + ": texture " + std::to_string(index) +
+                                " does not exist; slot left empty");
+            return ref;
+        }
+        if (texcoord < 0 || texcoord > 1) {
+            warnings_.push_back(who + ": reads TEXCOORD_" + std::to_string(texcoord) +
+                                "; only TEXCOORD_0 and TEXCOORD_1 are passed to shaders");
+        }
+        ref.texture = index;
+        ref.texcoord = texcoord;
+        ref.scale = std::isfinite(scale) ? static_cast<float>(scale) : 1.0f;
+        // Colour textures hold sRGB-encoded values, data textures linear ones (glTF 2.0, 3.9).
+        if (srgb) scene_.textures[static_cast<std::size_t>(index)].srgb = true;
+        return ref;
+    };
     for (std::size_t i = 0; i < model_.materials.size(); ++i) {
         const tinygltf::Material& src = model_.materials[i];
+        const std::string who = "material " + std::to_string(i);
         Material m;
         m.name = src.name.empty() ? "material" + std::to_string(i) : src.name;
-        const auto& f = src.pbrMetallicRoughness.baseColorFactor;
+        const auto& pbr = src.pbrMetallicRoughness;
+        const auto& f = pbr.baseColorFactor;
         const glm::vec4 color = f.size() == 4 ? glm::vec4(static_cast<float>(f[0]), static_cast<float>(f[1]),
                                                           static_cast<float>(f[2]), static_cast<float>(f[3]))
                                               : glm::vec4(std::numeric_limits<float>::quiet_NaN());
         if (std::isfinite(color.r + color.g + color.b + color.a)) {
             m.base_color = color;
         } else {
-            warnings_.push_back("material " + std::to_string(i) +
-                                ": baseColorFactor is not 4 finite numbers; white used");
+            warnings_.push_back(who + ": baseColorFactor is not 4 finite numbers; white used");
         }
+        const auto unit = [&](double v, float fallback, const char* name) {
+            if (std::isfinite(v) && v >= 0.0 && v <= 1.0) return static_cast<float>(v);
+            warnings_.push_back(who + ": " + name + " must be in 0..1; " + std::to_string(fallback) +
+                                " used");
+            return fallback;
+        };
+        m.metallic = unit(pbr.metallicFactor, 1.0f, "metallicFactor");
+        m.roughness = unit(pbr.roughnessFactor, 1.0f, "roughnessFactor");
+        if (src.emissiveFactor.size() == 3 && finite(src.emissiveFactor)) {
+            m.emissive = glm::vec3(static_cast<float>(src.emissiveFactor[0]),
+                                   static_cast<float>(src.emissiveFactor[1]),
+                                   static_cast<float>(src.emissiveFactor[2]));
+        }
+        m.double_sided = src.doubleSided;
+        m.alpha_mode = src.alphaMode == "MASK"    ? AlphaMode::Mask
+                       : src.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                  : AlphaMode::Opaque;
+        m.alpha_cutoff = std::isfinite(src.alphaCutoff) ? static_cast<float>(src.alphaCutoff) : 0.5f;
+        m.base_color_texture = textureRef(who + " baseColorTexture", pbr.baseColorTexture.index,
+                                          pbr.baseColorTexture.texCoord, 1.0, true);
+        m.metallic_roughness_texture =
+            textureRef(who + " metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
+                       pbr.metallicRoughnessTexture.texCoord, 1.0, false);
+        m.normal_texture = textureRef(who + " normalTexture", src.normalTexture.index,
+                                      src.normalTexture.texCoord, src.normalTexture.scale, false);
+        m.occlusion_texture = textureRef(who + " occlusionTexture", src.occlusionTexture.index,
+                                         src.occlusionTexture.texCoord, src.occlusionTexture.strength, false);
+        m.emissive_texture = textureRef(who + " emissiveTexture", src.emissiveTexture.index,
+                                        src.emissiveTexture.texCoord, 1.0, true);
         scene_.materials.push_back(std::move(m));
     }
 }
@@ -854,6 +1356,52 @@ void Converter::walkNodes() {
     }
 }
 
+// EXT_mesh_gpu_instancing: one local transform per instance (TRS from accessors), applied after
+// the node's own. Empty when the node has no instancing.
+std::vector<glm::mat4> Converter::instanceTransforms(std::size_t node_index) const {
+    const tinygltf::Node& node = model_.nodes[node_index];
+    const auto ext = node.extensions.find(kInstancing);
+    if (ext == node.extensions.end()) return {};
+    const std::string who = "node " + std::to_string(node_index) + " (" + kInstancing + ")";
+    if (!ext->second.IsObject() || !ext->second.Has("attributes") ||
+        !ext->second.Get("attributes").IsObject())
+        fail(who + ": the extension needs an \"attributes\" object");
+    const tinygltf::Value& attributes = ext->second.Get("attributes");
+    std::size_t count = 0;
+    std::vector<float> t, r, s;
+    const auto read = [&](const char* name, Use use, std::vector<float>* out) {
+        if (!attributes.Has(name)) return;
+        const tinygltf::Value& index = attributes.Get(name);
+        if (!index.IsNumber()) fail(who + ": " + name + " must be an accessor index");
+        const std::size_t n =
+            readAccessor(index.GetNumberAsInt(), std::string(name) + " of " + who, use, out);
+        if (count != 0 && n != count)
+            fail(who + ": " + name + " has " + std::to_string(n) + " instances, not " +
+                 std::to_string(count));
+        count = n;
+    };
+    read("TRANSLATION", Use::Translation, &t);
+    read("ROTATION", Use::Rotation, &r);
+    read("SCALE", Use::Scale, &s);
+    if (count == 0) fail(who + ": no TRANSLATION, ROTATION or SCALE accessor");
+    if (count > kMaxDrawItems)
+        fail(who + ": " + std::to_string(count) + " instances is over the limit of " +
+             std::to_string(kMaxDrawItems));
+    std::vector<glm::mat4> out(count, glm::mat4(1.0f));
+    for (std::size_t i = 0; i < count; ++i) {
+        glm::mat4 m(1.0f);
+        if (!t.empty()) m = glm::translate(m, glm::vec3(t[3 * i], t[3 * i + 1], t[3 * i + 2]));
+        if (!r.empty()) {
+            glm::quat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
+            const float len = glm::length(q);
+            if (len > 1e-6f && std::isfinite(len)) m = m * glm::mat4_cast(q / len);
+        }
+        if (!s.empty()) m = glm::scale(m, glm::vec3(s[3 * i], s[3 * i + 1], s[3 * i + 2]));
+        out[i] = m;
+    }
+    return out;
+}
+
 void Converter::visitNode(std::size_t node_index, const glm::mat4& world) {
     const tinygltf::Node& node = model_.nodes[node_index];
     const std::string who = "node " + std::to_string(node_index);
@@ -864,12 +1412,23 @@ void Converter::visitNode(std::size_t node_index, const glm::mat4& world) {
         }
         const auto mesh_index = static_cast<std::size_t>(node.mesh);
         const auto& prims = model_.meshes[mesh_index].primitives;
+        if (node.skin != -1 && warned_.insert("skin node " + std::to_string(node_index)).second) {
+            warnings_.push_back(who + ": skin " + std::to_string(node.skin) + " ignored; " +
+                                meshLabel(mesh_index) + " is drawn in its bind pose");
+        }
+        const std::vector<glm::mat4> instances = instanceTransforms(node_index);
         for (std::size_t p = 0; p < prims.size(); ++p) {
             const int mode = prims[p].mode;
-            if (mode != -1 && mode != TINYGLTF_MODE_TRIANGLES) {
-                warnings_.push_back(meshLabel(mesh_index) + " primitive " + std::to_string(p) + ": mode " +
-                                    std::to_string(mode) +
-                                    " skipped; only triangle lists (mode 4) are drawn");
+            if (mode != -1 && mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+                mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+                static const char* const kModeNames[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+                const std::string name =
+                    mode >= 0 && mode <= 3 ? std::string(" (") + kModeNames[mode] + ")" : "";
+                if (warned_.insert("mode " + std::to_string(mesh_index) + "/" + std::to_string(p)).second) {
+                    warnings_.push_back(meshLabel(mesh_index) + " primitive " + std::to_string(p) +
+                                        ": mode " + std::to_string(mode) + name +
+                                        " skipped; shaderlab draws only triangles (lists, strips and fans)");
+                }
                 continue;
             }
             const int material = prims[p].material;
@@ -879,15 +1438,21 @@ void Converter::visitNode(std::size_t node_index, const glm::mat4& world) {
                      std::to_string(material) + " does not exist (the file has " +
                      std::to_string(model_.materials.size()) + " materials)");
             }
-            if (scene_.draw_items.size() >= kMaxDrawItems) {
-                fail("the scene has more than " + std::to_string(kMaxDrawItems) + " draw items");
+            const int mesh_id = convertPrimitive(mesh_index, p);
+            for (std::size_t k = 0; k < std::max<std::size_t>(instances.size(), 1); ++k) {
+                if (scene_.draw_items.size() >= kMaxDrawItems) {
+                    fail("the scene has more than " + std::to_string(kMaxDrawItems) + " draw items");
+                }
+                DrawItem item;
+                item.node_name = node.name.empty() ? "node" + std::to_string(node_index) : node.name;
+                item.mesh = mesh_id;
+                item.material = material;
+                item.world = instances.empty() ? world : world * instances[k];
+                if (!finiteMatrix(item.world))
+                    fail(who + ": an instance's transform overflows to infinity or NaN");
+                item.mirrored = glm::determinant(glm::mat3(item.world)) < 0.0f;
+                scene_.draw_items.push_back(std::move(item));
             }
-            DrawItem item;
-            item.node_name = node.name.empty() ? "node" + std::to_string(node_index) : node.name;
-            item.mesh = convertPrimitive(mesh_index, p);
-            item.material = material;
-            item.world = world;
-            scene_.draw_items.push_back(std::move(item));
         }
     }
     if (node.camera != -1) {
@@ -896,9 +1461,9 @@ void Converter::visitNode(std::size_t node_index, const glm::mat4& world) {
                  std::to_string(model_.cameras.size()) + " cameras)");
         }
         const auto& cam = model_.cameras[static_cast<std::size_t>(node.camera)];
-        if (cam.type != "perspective") {
-            warnings_.push_back(who + ": camera " + std::to_string(node.camera) + " is " +
-                                inQuotes(cam.type) + ", not perspective; ignored");
+        if (cam.type != "perspective" && cam.type != "orthographic") {
+            warnings_.push_back(who + ": camera " + std::to_string(node.camera) + " has unknown type " +
+                                inQuotes(cam.type) + "; ignored");
         } else if (camera_node_ < 0) {
             camera_node_ = static_cast<int>(node_index);
             camera_world_ = world;
@@ -945,6 +1510,15 @@ void Converter::addLight(std::size_t node_index, const glm::mat4& world) {
     if (!std::isfinite(src.range) || src.range < 0.0) fail(lwho + ": range must be finite and >= 0");
     light.intensity = static_cast<float>(src.intensity);
     light.range = static_cast<float>(src.range);
+    if (light.type == LightType::Spot) {
+        const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
+        // KHR_lights_punctual: 0 <= innerConeAngle < outerConeAngle <= pi/2.
+        if (!(inner >= 0.0) || !(outer > inner) || !(outer <= 1.5707964)) {
+            fail(lwho + ": spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+        }
+        light.inner_cone = static_cast<float>(inner);
+        light.outer_cone = static_cast<float>(outer);
+    }
     if (!finiteVec(light.color) || !std::isfinite(light.intensity) || !std::isfinite(light.range)) {
         fail(lwho + ": color, intensity or range is too large for a float");
     }
@@ -1025,22 +1599,41 @@ void Converter::placeCamera() {
         cam.up = glm::vec3(0.0f, 1.0f, 0.0f);
         cam.z_near = std::max((distance - radius) * 0.5f, distance * 1e-3f);
         cam.z_far = (distance + radius) * 2.0f;
+        // The distance fits the vertical field of view; a portrait target widens the projection
+        // so the sphere fits across as well (camera.cpp).
+        cam.fit_both_axes = true;
         checkCamera();
         return;
     }
 
     const auto& node = model_.nodes[static_cast<std::size_t>(camera_node_)];
-    const auto& p = model_.cameras[static_cast<std::size_t>(node.camera)].perspective;
+    const tinygltf::Camera& file_camera = model_.cameras[static_cast<std::size_t>(node.camera)];
     const std::string who = "camera " + std::to_string(node.camera);
-    if (!std::isfinite(p.yfov) || p.yfov <= 0.0 || p.yfov >= 3.14159) fail(who + ": yfov must be in (0, pi)");
-    if (!std::isfinite(p.znear) || p.znear <= 0.0) fail(who + ": znear must be > 0");
-    if (!std::isfinite(p.zfar) || (p.zfar != 0.0 && p.zfar <= p.znear)) fail(who + ": zfar must be > znear");
-    if (!std::isfinite(p.aspectRatio) || p.aspectRatio < 0.0) fail(who + ": aspectRatio must be > 0");
-
     scene_.has_camera = true;
-    cam.fov_y_deg = static_cast<float>(p.yfov * 180.0 / 3.14159265358979323846);
-    cam.z_near = static_cast<float>(p.znear);
-    cam.file_aspect = static_cast<float>(p.aspectRatio);
+    if (file_camera.type == "orthographic") {
+        const auto& o = file_camera.orthographic;
+        if (!std::isfinite(o.xmag) || o.xmag == 0.0 || !std::isfinite(o.ymag) || o.ymag == 0.0)
+            fail(who + ": xmag and ymag must be finite and not 0");
+        if (!std::isfinite(o.znear) || o.znear < 0.0) fail(who + ": znear must be >= 0");
+        if (!std::isfinite(o.zfar) || o.zfar <= o.znear) fail(who + ": zfar must be > znear");
+        cam.orthographic = true;
+        cam.ortho_height = static_cast<float>(2.0 * std::abs(o.ymag));
+        cam.file_aspect = static_cast<float>(std::abs(o.xmag / o.ymag));
+        // An orthographic near plane may be 0; checkCamera() wants it positive.
+        cam.z_near = static_cast<float>(std::max(o.znear, o.zfar * 1e-6));
+        cam.z_far = static_cast<float>(o.zfar);
+    } else {
+        const auto& p = file_camera.perspective;
+        if (!std::isfinite(p.yfov) || p.yfov <= 0.0 || p.yfov >= 3.14159)
+            fail(who + ": yfov must be in (0, pi)");
+        if (!std::isfinite(p.znear) || p.znear <= 0.0) fail(who + ": znear must be > 0");
+        if (!std::isfinite(p.zfar) || (p.zfar != 0.0 && p.zfar <= p.znear))
+            fail(who + ": zfar must be > znear");
+        if (!std::isfinite(p.aspectRatio) || p.aspectRatio < 0.0) fail(who + ": aspectRatio must be > 0");
+        cam.fov_y_deg = static_cast<float>(p.yfov * 180.0 / 3.14159265358979323846);
+        cam.z_near = static_cast<float>(p.znear);
+        cam.file_aspect = static_cast<float>(p.aspectRatio);
+    }
     // glTF cameras look down their local -Z with +Y up.
     cam.position = glm::vec3(camera_world_ * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     glm::vec3 forward = glm::vec3(camera_world_ * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f));
@@ -1055,8 +1648,10 @@ void Converter::placeCamera() {
     float distance = glm::length(centre - cam.position);
     if (!(distance > 1e-4f)) distance = 1.0f;
     cam.target = cam.position + forward * distance;
-    if (p.zfar > 0.0) {
-        cam.z_far = static_cast<float>(p.zfar);
+    if (cam.orthographic) {
+        // z_far was set above.
+    } else if (file_camera.perspective.zfar > 0.0) {
+        cam.z_far = static_cast<float>(file_camera.perspective.zfar);
     } else {
         // Infinite projection in the file: a finite far plane well behind the whole scene.
         cam.z_far = std::max(cam.z_near * 1000.0f, 2.0f * (glm::length(centre - cam.position) + radius));
@@ -1081,14 +1676,10 @@ void Converter::run() {
     if (model_.asset.version.rfind("2.", 0) != 0) {
         fail("glTF version " + inQuotes(model_.asset.version) + " is not supported (need 2.x)");
     }
-    for (const std::string& ext : model_.extensionsRequired) {
-        // Material extensions only change shading the labs replace anyway; anything that changes
-        // geometry (Draco, quantization, ...) would be read wrongly, so it is refused.
-        if (ext != "KHR_lights_punctual" && ext.rfind("KHR_materials_", 0) != 0 &&
-            ext != "KHR_texture_transform") {
-            fail("requires extension " + inQuotes(ext) + ", which shaderlab does not support");
-        }
-    }
+    // checkExtensions() refused what the loader cannot draw before tinygltf ran.
+    quantized_ = std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), kQuantization) !=
+                 model_.extensionsUsed.end();
+    decodeMeshoptViews();
     convertMaterials();
     walkNodes();
     computeBounds();
@@ -1098,6 +1689,17 @@ void Converter::run() {
 }  // namespace
 
 SceneLoadResult loadGltfScene(const std::string& path, Scene* out) {
+    const FileText file = readFile(path, kMaxFileBytes);
+    if (!file.ok) {
+        SceneLoadResult result;
+        result.error = file.error.rfind(path, 0) == 0 ? file.error : path + ": " + file.error;
+        if (out) *out = Scene{};
+        return result;
+    }
+    return loadGltfSceneFromBytes(file.text, path, out);
+}
+
+SceneLoadResult loadGltfSceneFromBytes(const std::string& bytes, const std::string& path, Scene* out) {
     SceneLoadResult result;
     if (out == nullptr) {
         result.error = path + ": no Scene to load into";
@@ -1105,9 +1707,8 @@ SceneLoadResult loadGltfScene(const std::string& path, Scene* out) {
     }
     *out = Scene{};
     try {
-        const FileText file = readFile(path, kMaxFileBytes);
-        if (!file.ok) fail(file.error.rfind(path, 0) == 0 ? file.error.substr(path.size() + 2) : file.error);
-        const std::string& bytes = file.text;
+        if (bytes.size() > kMaxFileBytes)
+            fail("file is larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
         if (bytes.empty()) fail("file is empty");
 
         FsGuard guard;
@@ -1129,19 +1730,30 @@ SceneLoadResult loadGltfScene(const std::string& path, Scene* out) {
         bool loaded = false;
         const bool glb_magic = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
         const std::string ext = fs::path(path).extension().string();
+        std::set<int> fallback_buffers;
         if (glb_magic) {
-            const std::size_t length = checkGlbLayout(bytes, &result.warnings);
+            std::size_t length = checkGlbLayout(bytes, &result.warnings);
             const std::size_t json_length = readU32(bytes, 12);
-            checkJson(bytes.data() + 20, bytes.data() + 20 + json_length);
-            loaded = gltf.LoadBinaryFromMemory(&model, &err, &warn,
-                                               reinterpret_cast<const unsigned char*>(bytes.data()),
-                                               static_cast<unsigned int>(length), guard.folder);
+            const char* json = bytes.data() + 20;
+            checkJson(json, json + json_length);
+            const std::string rewritten =
+                checkExtensions(json, json + json_length, &result.warnings, &fallback_buffers);
+            const std::string glb =
+                rewritten.empty() ? std::string() : replaceGlbJson(bytes, length, rewritten);
+            if (!glb.empty()) length = glb.size();
+            loaded = gltf.LoadBinaryFromMemory(
+                &model, &err, &warn,
+                reinterpret_cast<const unsigned char*>(glb.empty() ? bytes.data() : glb.data()),
+                static_cast<unsigned int>(length), guard.folder);
         } else {
             if (ext == ".glb" || ext == ".GLB")
                 fail("not a GLB file: it does not start with the 'glTF' magic");
             checkJson(bytes.data(), bytes.data() + bytes.size());
-            loaded = gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
-                                              static_cast<unsigned int>(bytes.size()), guard.folder);
+            const std::string rewritten = checkExtensions(bytes.data(), bytes.data() + bytes.size(),
+                                                          &result.warnings, &fallback_buffers);
+            const std::string& json = rewritten.empty() ? bytes : rewritten;
+            loaded = gltf.LoadASCIIFromString(&model, &err, &warn, json.data(),
+                                              static_cast<unsigned int>(json.size()), guard.folder);
         }
         appendLines(warn, "", &result.warnings);
         // Our own refusals first: tinygltf only sees them as "file not found".
@@ -1158,7 +1770,7 @@ SceneLoadResult loadGltfScene(const std::string& path, Scene* out) {
 
         Scene scene;
         scene.source_path = path;
-        Converter(model, &scene, &result.warnings).run();
+        Converter(model, &scene, &result.warnings, fallback_buffers).run();
         *out = std::move(scene);
         result.ok = true;
     } catch (const LoadError& e) {

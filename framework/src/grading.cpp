@@ -118,12 +118,15 @@ grader::Image coverageImage(const std::vector<std::uint8_t>& coverage, int w, in
     return img;
 }
 
-ReferenceImages loadGoldens(const LabSpec& spec, const std::string& lab_dir) {
+// `skip`: scenes whose file did not load, which have no goldens to compare with.
+ReferenceImages loadGoldens(const LabSpec& spec, const std::string& lab_dir,
+                            const std::set<std::string>& skip) {
     ReferenceImages ref;
     ref.source = "goldens";
     ScopedTiming timing("goldens", spec.id);
     const std::vector<GradedImage> graded = gradedImages(spec);
     for (const SceneSpec& scene : spec.scenes) {
+        if (skip.count(scene.name)) continue;
         std::vector<PassImage>& passes = ref.scenes[scene.name];
         for (std::size_t i = 0; i < graded.size(); ++i) {
             const bool final_image = i + 1 == graded.size();
@@ -275,9 +278,17 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     // Goldens and hints live in the lab's folder, or under goldens_root when it is given.
     const std::string stored_dir =
         options.goldens_root.empty() ? spec.lab_dir : (fs::path(options.goldens_root) / id).string();
+    std::set<std::string> unloadable;  // scenes whose file did not load: reported, not graded
+    std::string unloadable_message;
+    for (const SceneRender& scene : student.render.scenes) {
+        if (scene.error.empty()) continue;
+        unloadable.insert(scene.scene);
+        unloadable_message += (unloadable_message.empty() ? "" : "; ") + std::string("scene '") +
+                              scene.scene + "' did not load: " + scene.error;
+    }
     const ReferenceImages ref = hasReference(options.reference_root, id)
                                     ? renderReference(spec, options.reference_root, options)
-                                    : loadGoldens(spec, stored_dir);
+                                    : loadGoldens(spec, stored_dir, unloadable);
     lab.reference_source = ref.source;
     if (!ref.ok) {
         lab.status = "crashed";
@@ -302,6 +313,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     // The reference must match the lab as it is now; a mismatch (goldens older than lab.json)
     // is the lab's fault, never the student's.
     for (const SceneRender& scene : student.render.scenes) {
+        if (unloadable.count(scene.scene)) continue;
         const auto it = ref.scenes.find(scene.scene);
         bool consistent = it != ref.scenes.end() && it->second.size() == graded.size() &&
                           scene.passes.size() == graded.size();
@@ -328,6 +340,17 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         grader::ReportScene rs;
         rs.name = scene.scene;
         rs.render_ms = scene.render_ms;
+        if (unloadable.count(scene.scene)) {
+            // The lab's fault: said plainly, and the lab's other scenes are graded as usual.
+            rs.status = "failed";
+            rs.message =
+                "the scene's file did not load, so this scene was not rendered (a problem of the lab, "
+                "not of the submission): " +
+                scene.error;
+            all_passed = false;
+            lab.scenes.push_back(std::move(rs));
+            continue;
+        }
         const auto ref_it = ref.scenes.find(scene.scene);
         std::vector<FailingImage> failing;
         // What each image looked like, for the known-mistake comparison once the scene is judged.
@@ -507,7 +530,10 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         lab.goals.push_back(std::move(rg));
     }
     lab.status = all_passed ? "passed" : "failed";
-    if (!write_errors.empty()) lab.message = "could not write images: " + joinReasons(write_errors);
+    if (!unloadable_message.empty()) lab.message = unloadable_message;
+    if (!write_errors.empty())
+        lab.message += (lab.message.empty() ? "" : "; ") + std::string("could not write images: ") +
+                       joinReasons(write_errors);
     if (!hints_error.empty())
         lab.message +=
             (lab.message.empty() ? "" : "; ") + std::string("known-mistake hints not used: ") + hints_error;
@@ -569,6 +595,7 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
         fs::create_directories(fs::path(lab_dir) / "golden", ec);
         const std::vector<GradedImage> graded = gradedImages(parsed.spec);
         for (const SceneRender& s : r.render.scenes) {
+            if (!s.error.empty()) errors.push_back(id + ": scene '" + s.scene + "': " + s.error);
             for (std::size_t i = 0; i < s.passes.size() && i < graded.size(); ++i) {
                 const PassImage& p = s.passes[i];
                 const bool final_image = i + 1 == s.passes.size();

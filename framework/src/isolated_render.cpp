@@ -168,7 +168,8 @@ bool readAt(int fd, void* data, std::size_t n, std::uint64_t offset) {
                                   {"color_at", color_at},
                                   {"coverage_at", coverage_at}});
             }
-            scenes.push_back({{"scene", s.scene}, {"render_ms", s.render_ms}, {"passes", passes}});
+            scenes.push_back(
+                {{"scene", s.scene}, {"render_ms", s.render_ms}, {"passes", passes}, {"error", s.error}});
         }
         result["scenes"] = scenes;
     }
@@ -282,6 +283,7 @@ bool readChildResult(int fd, IsolatedRender* out) {
         SceneRender scene;
         scene.scene = text(s, "scene", 300);
         scene.render_ms = s.value("render_ms", 0.0);
+        scene.error = s.value("error", "");
         for (const json& p : s.value("passes", json::array())) {
             PassImage img;
             img.pass = text(p, "pass", 300);

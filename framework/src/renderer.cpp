@@ -37,18 +37,73 @@ constexpr std::size_t kMaxShaderBytes = 256 * 1024;
 constexpr int kMaxLights = 4;
 constexpr int kMaxTextureUnits = 16;
 
+// Optional vertex attributes (docs/scenes.md): uploaded the first time a program that declares
+// them draws the mesh, and fed as a constant when the mesh lacks them.
+struct OptionalAttribute {
+    const char* name;
+    int components;
+    glm::vec4 absent;  // the constant a shader reads when the mesh has no such data
+};
+constexpr OptionalAttribute kOptionalAttributes[] = {{"a_tangent", 4, {1.0f, 0.0f, 0.0f, 1.0f}},
+                                                     {"a_color", 4, {1.0f, 1.0f, 1.0f, 1.0f}},
+                                                     {"a_texcoord1", 2, {0.0f, 0.0f, 0.0f, 1.0f}}};
+constexpr int kOptionalCount = 3;
+
 struct GpuMesh {
     GLuint vao = 0, vbo[3] = {0, 0, 0}, ebo = 0;
     GLsizei index_count = 0;
+    const Mesh* source = nullptr;                     // for the optional attributes; null: none
+    GLuint optional_vbo[kOptionalCount] = {0, 0, 0};  // 0 until first used
     GpuMesh() = default;
     GpuMesh(const GpuMesh&) = delete;
     GpuMesh& operator=(const GpuMesh&) = delete;
     ~GpuMesh() {
         if (ebo) glDeleteBuffers(1, &ebo);
         glDeleteBuffers(3, vbo);
+        glDeleteBuffers(kOptionalCount, optional_vbo);
         if (vao) glDeleteVertexArrays(1, &vao);
     }
 };
+
+// Points the optional attributes `program` declares at `mesh`'s data (uploading it on first use)
+// or at a constant; returns the locations enabled, to disable after the draw.
+std::vector<GLuint> bindOptionalAttributes(GpuMesh& mesh, GLuint program) {
+    std::vector<GLuint> enabled;
+    for (int k = 0; k < kOptionalCount; ++k) {
+        const OptionalAttribute& a = kOptionalAttributes[k];
+        const GLint location = glGetAttribLocation(program, a.name);
+        if (location < 0) continue;
+        const auto loc = static_cast<GLuint>(location);
+        const Mesh* m = mesh.source;
+        const void* data = nullptr;
+        std::size_t bytes = 0;
+        if (m && k == 0 && m->tangents.size() == m->positions.size()) {
+            data = m->tangents.data();
+            bytes = m->tangents.size() * sizeof(glm::vec4);
+        } else if (m && k == 1 && m->colors.size() == m->positions.size()) {
+            data = m->colors.data();
+            bytes = m->colors.size() * sizeof(glm::vec4);
+        } else if (m && k == 2 && m->texcoords1.size() == m->positions.size()) {
+            data = m->texcoords1.data();
+            bytes = m->texcoords1.size() * sizeof(glm::vec2);
+        }
+        if (!data) {
+            glDisableVertexAttribArray(loc);
+            glVertexAttrib4fv(loc, glm::value_ptr(a.absent));
+            continue;
+        }
+        if (!mesh.optional_vbo[k]) {
+            glGenBuffers(1, &mesh.optional_vbo[k]);
+            glBindBuffer(GL_ARRAY_BUFFER, mesh.optional_vbo[k]);
+            glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
+        }
+        glBindBuffer(GL_ARRAY_BUFFER, mesh.optional_vbo[k]);
+        glEnableVertexAttribArray(loc);
+        glVertexAttribPointer(loc, a.components, GL_FLOAT, GL_FALSE, 0, nullptr);
+        enabled.push_back(loc);
+    }
+    return enabled;
+}
 
 template <typename T>
 void uploadAttribute(GLuint buffer, GLuint location, int components, const std::vector<T>& data) {
@@ -442,6 +497,7 @@ class LabRunner {
     struct LoadedScene {
         Scene scene;
         std::vector<std::unique_ptr<GpuMesh>> meshes;
+        std::string error;  // the file did not load: "<path>: <problem>"
     };
     struct PassCamera {
         Camera camera;
@@ -690,12 +746,18 @@ const LabRunner::LoadedScene* LabRunner::loadScene(const SceneSpec& scene_spec) 
     ScopedTiming timing("scene_load", spec_.id, scene_spec.file);
     LoadedScene loaded;
     const SceneLoadResult r = loadGltfScene(path, &loaded.scene);
+    // The loader's warnings are the lab author's to read (a skipped primitive, an ignored
+    // extension), never dropped; a file that does not load fails this scene only.
+    // Named from the lab folder, as every diagnostic file is: scene files sit beside the labs.
+    for (const std::string& w : r.warnings) warnOnce("../" + scene_spec.file, w);
     if (!r.ok) {
-        fail(RenderStatus::RenderError, r.error);
-        return nullptr;
+        loaded.error = r.error;
+        return &scenes_.emplace(path, std::move(loaded)).first->second;
     }
     for (const Mesh& m : loaded.scene.meshes) loaded.meshes.push_back(uploadMesh(m));
-    return &scenes_.emplace(path, std::move(loaded)).first->second;
+    LoadedScene& stored = scenes_.emplace(path, std::move(loaded)).first->second;
+    for (std::size_t i = 0; i < stored.meshes.size(); ++i) stored.meshes[i]->source = &stored.scene.meshes[i];
+    return &stored;
 }
 
 GLuint LabRunner::sampler(TextureFilter filter, TextureWrap wrap, bool shadow) {
@@ -890,7 +952,16 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     const auto t0 = std::chrono::steady_clock::now();
     report("scene " + scene_spec.name);
     const LoadedScene* scene = loadScene(scene_spec);
-    if (!scene) return false;
+    if (!scene->error.empty()) {
+        // The other scenes still render and are graded; this one is reported with the reason.
+        SceneRender failed;
+        failed.scene = scene_spec.name;
+        failed.error = scene->error;
+        out_.diagnostics.push_back({"../" + scene_spec.file, 0, 0, "error", scene->error});
+        report("done " + scene_spec.name + " 0.0");
+        out_.scenes.push_back(std::move(failed));
+        return true;
+    }
     // Every target starts each scene blank, so nothing of the previous scene survives in a pass
     // that draws without clearing.
     for (auto& [name, t] : targets_) {
@@ -1010,7 +1081,31 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
         light_position[i] = l.directional ? glm::vec4(-l.direction, 0.0f) : glm::vec4(l.position, 1.0f);
         light_color[i] = l.color;
     }
+    float light_range[kMaxLights] = {};
+    glm::vec3 light_direction[kMaxLights] = {};
+    glm::vec2 light_cone[kMaxLights] = {};
+    for (int i = 0; i < light_count; ++i) {
+        const ResolvedLight& l = ctx.lights[static_cast<std::size_t>(i)];
+        light_range[i] = l.range;
+        light_direction[i] = l.direction;
+        light_cone[i] = l.cone;
+    }
     setFramework(prog, file, "u_light_count", GL_INT, [&](GLint l) { glUniform1i(l, light_count); });
+    // KHR_lights_punctual range and spot cones (docs/scenes.md): arrays like u_light_position.
+    const auto lightArray = [&](const char* name, GLenum type,
+                                const std::function<void(GLint, GLsizei)>& set) {
+        if (const UniformSlot* s = prog.uniform(name)) {
+            if (s->type == type)
+                set(s->location, std::min(s->size, kMaxLights));
+            else
+                warnOnce(file, std::string(name) + " is provided by the framework as " + glslTypeName(type));
+        }
+    };
+    lightArray("u_light_range", GL_FLOAT, [&](GLint l, GLsizei n) { glUniform1fv(l, n, light_range); });
+    lightArray("u_light_direction", GL_FLOAT_VEC3,
+               [&](GLint l, GLsizei n) { glUniform3fv(l, n, glm::value_ptr(light_direction[0])); });
+    lightArray("u_light_cone", GL_FLOAT_VEC2,
+               [&](GLint l, GLsizei n) { glUniform2fv(l, n, glm::value_ptr(light_cone[0])); });
     // All declared entries are written (unused ones zero), so no light of another scene lingers.
     if (const UniformSlot* s = prog.uniform("u_light_position")) {
         if (s->type == GL_FLOAT_VEC4)
@@ -1027,7 +1122,9 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
 
     const bool program_point_size =
         pass.draw == DrawKind::Procedural && mentionsIdentifier(prog.preparedText(0), "gl_PointSize");
-    auto draw = [&](const GpuMesh* mesh, const glm::mat4& model, const glm::vec4& base_color) {
+    static const Material kDefaultMaterial;
+    auto draw = [&](GpuMesh* mesh, const glm::mat4& model, const Material& material) {
+        const glm::vec4& base_color = material.base_color;
         const glm::mat4 model_view = view * model;
         const glm::mat4 mvp = projection * model_view;
         const glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(model));
@@ -1041,12 +1138,19 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
                      [&](GLint l) { glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(normal_matrix)); });
         setFramework(prog, file, "u_base_color", GL_FLOAT_VEC4,
                      [&](GLint l) { glUniform4fv(l, 1, glm::value_ptr(base_color)); });
+        setFramework(prog, file, "u_metallic", GL_FLOAT, [&](GLint l) { glUniform1f(l, material.metallic); });
+        setFramework(prog, file, "u_roughness", GL_FLOAT,
+                     [&](GLint l) { glUniform1f(l, material.roughness); });
+        setFramework(prog, file, "u_emissive", GL_FLOAT_VEC3,
+                     [&](GLint l) { glUniform3fv(l, 1, glm::value_ptr(material.emissive)); });
         if (!mesh) {
             glBindVertexArray(empty_vao_);
             glDrawArrays(glPrimitive(pass.primitive), 0, pass.vertex_count);
         } else {
             glBindVertexArray(mesh->vao);
+            const std::vector<GLuint> enabled = bindOptionalAttributes(*mesh, prog.id());
             glDrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, nullptr);
+            for (GLuint loc : enabled) glDisableVertexAttribArray(loc);
         }
     };
     for (int face = 0; face < target.faces(); ++face) {
@@ -1056,16 +1160,23 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
         clearTarget(pass.state, tspec.depth != DepthMode::None);
         setFramework(prog, file, "u_cube_face", GL_INT, [&](GLint l) { glUniform1i(l, face); });
         if (pass.draw == DrawKind::Fullscreen) {
-            draw(fullscreen_.get(), glm::mat4(1.0f), glm::vec4(1.0f));
+            draw(fullscreen_.get(), glm::mat4(1.0f), kDefaultMaterial);
         } else if (pass.draw == DrawKind::Procedural) {
-            draw(nullptr, glm::mat4(1.0f), glm::vec4(1.0f));
+            draw(nullptr, glm::mat4(1.0f), kDefaultMaterial);
         } else {
             for (const DrawItem& item : ctx.scene->scene.draw_items) {
-                const glm::vec4 base =
-                    item.material >= 0
-                        ? ctx.scene->scene.materials[static_cast<std::size_t>(item.material)].base_color
-                        : glm::vec4(1.0f);
-                draw(ctx.scene->meshes[static_cast<std::size_t>(item.mesh)].get(), item.world, base);
+                const Material& material =
+                    item.material >= 0 ? ctx.scene->scene.materials[static_cast<std::size_t>(item.material)]
+                                       : kDefaultMaterial;
+                // A mirroring transform turns the winding over; a double-sided material is not
+                // back-face culled (glTF 2.0, 3.9.6). Front-face culling, a lab's own technique
+                // (inverted-hull outlines), stays.
+                const bool unculled = material.double_sided && pass.state.cull == CullMode::Back;
+                if (item.mirrored) glFrontFace(GL_CW);
+                if (unculled) glDisable(GL_CULL_FACE);
+                draw(ctx.scene->meshes[static_cast<std::size_t>(item.mesh)].get(), item.world, material);
+                if (item.mirrored) glFrontFace(GL_CCW);
+                if (unculled) glEnable(GL_CULL_FACE);
             }
         }
     }

@@ -18,6 +18,11 @@ struct ResolvedLight {
     glm::vec3 position{0.0f};                // point lights
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional: the direction light travels (unit)
     glm::vec3 color{1.0f};                   // colour times intensity
+    // KHR_lights_punctual extras (scene lights only; a lab's own lights keep the defaults):
+    float range = 0.0f;  // 0 = infinite
+    // The specification's precomputed spot falloff: saturate(dot(direction, -l) * x + y)^2 with
+    // x = 1 / max(0.001, cos(inner) - cos(outer)), y = -cos(outer) * x; (0, 1) = no falloff.
+    glm::vec2 cone{0.0f, 1.0f};
 };
 
 // The lights of a scene: the lab's when it gives them, else the file's; a scene without any

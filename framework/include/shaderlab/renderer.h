@@ -42,6 +42,9 @@ struct SceneRender {
     // every pass's when RenderOptions::keep_all_passes.
     std::vector<PassImage> passes;
     double render_ms = 0.0;
+    // Set when the scene's file did not load ("<path>: <problem>"); `passes` is then empty and
+    // the lab's other scenes are rendered all the same.
+    std::string error;
 };
 
 struct LabRender {

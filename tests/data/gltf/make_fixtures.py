@@ -337,10 +337,10 @@ def main():
         doc["scenes"][0]["nodes"].append(1)
     simple("bad_light_index.gltf", bad_light)
 
-    def draco(doc):
-        doc["extensionsUsed"] = ["KHR_draco_mesh_compression"]
-        doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
-    simple("required_extension.gltf", draco)
+    def basisu(doc):
+        doc["extensionsUsed"] = ["KHR_texture_basisu"]
+        doc["extensionsRequired"] = ["KHR_texture_basisu"]
+    simple("required_extension.gltf", basisu)
 
     def bad_matrix(doc):
         doc["nodes"][0]["matrix"] = [1, 0, 0]
