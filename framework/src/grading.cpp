@@ -650,7 +650,7 @@ bool loadGoldenScene(const LabSpec& spec, const std::string& stored_dir, const s
         *error = "the lab has no scene '" + scene + "'";
         return false;
     }
-    ReferenceImages ref = loadGoldens(one, stored_dir);
+    ReferenceImages ref = loadGoldens(one, stored_dir, {});
     if (!ref.ok) {
         *error = ref.error;
         return false;
