@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "commands.h"
@@ -59,20 +60,28 @@ bool prepareOutput(const fs::path& out) {
         return false;
     }
     const fs::path lock = out / ".shaderlab.lock";
-    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (fd < 0) {
+    // A process that writes into the same folder again (`watch` checks on every save) keeps the
+    // lock it already holds: flock would refuse a second descriptor of the same process.
+    static std::set<std::string> held;
+    const std::string key = fs::weakly_canonical(lock, ec).string();
+    const bool already_held = held.count(key) > 0;
+    const int fd = already_held ? -1 : ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (!already_held && fd < 0) {
         std::cerr << "shaderlab: " << out.string() << ": the output folder is not writable ("
                   << std::strerror(errno) << ")\n";
         return false;
     }
-    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    if (already_held) {
+        // this process took it on an earlier run
+    } else if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
         std::cerr << "shaderlab: " << out.string()
                   << ": another shaderlab run is writing into this folder; wait for it to finish or "
                      "give this one another --out\n";
         close(fd);
         return false;
+    } else {
+        held.insert(key);  // kept open (and locked) until the process exits
     }
-    // Kept open (and locked) until the process exits.
     std::string error;
     const fs::path probe = out / ".shaderlab.write-test";
     if (!grader::writeFileAtomically(probe.string(), "shaderlab\n", &error, false)) {

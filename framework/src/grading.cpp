@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "grader/atomic_file.h"
 #include "grader/heatmap.h"
@@ -218,10 +220,20 @@ std::string writeImage(const grader::Image& img, const fs::path& out_dir, const 
 // to writing `img` when the copy fails.
 std::string copyOrWriteImage(const std::string& golden, const grader::Image& img, const fs::path& out_dir,
                              const fs::path& rel, std::vector<std::string>* errors) {
-    std::error_code ec;
-    fs::create_directories((out_dir / rel).parent_path(), ec);
-    if (!golden.empty() && fs::copy_file(golden, out_dir / rel, fs::copy_options::overwrite_existing, ec))
-        return rel.generic_string();
+    if (!golden.empty()) {
+        // The same care as writeImage: no folder or file of the output written through a link.
+        std::ifstream in(golden, std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        std::string err;
+        if (in && grader::createFoldersInside(out_dir.string(), rel.parent_path().string(), &err) &&
+            grader::writeFileAtomically((out_dir / rel).string(), bytes.str(), &err, false))
+            return rel.generic_string();
+        if (!err.empty()) {
+            errors->push_back(err);
+            return {};
+        }
+    }
     return writeImage(img, out_dir, rel, errors);
 }
 
