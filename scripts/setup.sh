@@ -9,6 +9,7 @@ packages=(
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
   libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev libstb-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev python3-glad clang-format libvalijson-dev libpng-dev
+  libarchive-dev libxxhash-dev  # shaderlab batch: submitted zips, content hashes
   chromium tidy  # tests/report_page_test.cpp renders and validates report.html (skipped without them)
 )
 missing=()

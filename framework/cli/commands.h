@@ -3,6 +3,7 @@
 // command could not run (bad arguments, malformed lab.json, no GL context).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -91,5 +92,40 @@ struct CorpusArgs {
     double timeout_s = 10.0;
 };
 int runCorpus(const CorpusArgs& args);
+
+// `shaderlab batch`: every submission (folder or .zip) below `submissions_dir`, each lab in a
+// worker process; see command_batch.cpp and docs/instructors.md.
+struct BatchArgs {
+    CommonOptions common;
+    std::string submissions_dir;
+    std::string out_dir;
+    std::string reference_root;  // empty: reference_solutions beside labs/
+    bool no_reference = false;
+    std::string cache_dir;  // reference renders; empty: <out>/.shaderlab/references
+    int jobs = 0;           // 0: the number of cores
+    double timeout_s = 60.0;
+    std::string memory = "6G";  // address space of each worker and render process
+    std::string shard;          // "K/N": every N-th submission from the K-th; empty: all
+    std::vector<std::string> formats;
+    std::uint64_t max_unpacked_mib = 64;
+};
+int runBatch(const BatchArgs& args);
+
+// The worker the batch starts for one unit of work (not for people: hidden from --help).
+struct BatchWorkerArgs {
+    std::string mode;  // grade | reference
+    std::string labs_root, lab, backend = "osmesa";
+    std::string submission, out_dir, goldens_root, reference_root;
+    double timeout_s = 60.0;
+    std::string memory = "6G";
+};
+int runBatchWorker(const BatchWorkerArgs& args);
+
+// `shaderlab merge`: the summaries (and report folders) of several results folders in one.
+struct MergeArgs {
+    std::vector<std::string> inputs;
+    std::string out_dir;
+};
+int runMerge(const MergeArgs& args);
 
 }  // namespace shaderlab::cli
