@@ -353,7 +353,8 @@ TEST(BatchCli, RefusesAnUnwritableOrBusyResultsFolderBeforeAnyWork) {
 // second run skips every unchanged submission.
 TEST(BatchCli, MixedSubmissionsEachGetOneClearStatus) {
     const fs::path dir = scratch("mixed");
-    const fs::path subs = dir / "subs", out = dir / "out", home = dir / "home";
+    // The results go inside the submissions folder: they are not taken for a submission.
+    const fs::path subs = dir / "subs", out = subs / "results", home = dir / "home";
     fs::create_directories(home);
     copyReference(subs / "alice");
     copyReference(subs / "dave");  // the same work as alice's
@@ -366,18 +367,22 @@ TEST(BatchCli, MixedSubmissionsEachGetOneClearStatus) {
     writeFile(subs / "nothing.zip", "");
     writeFile(subs / "garbage.zip", std::string(300, '\x07'));
     writeFile(subs / "stray.txt", "not a submission");
+    // A lab folder that is a symlink to the root of the file system, and a symlink loop.
+    fs::create_directories(subs / "eve");
+    fs::create_directory_symlink("/", subs / "eve" / kLab);
+    fs::create_directory_symlink(".", subs / "eve" / "loop");
     const std::string env = "HOME='" + home.string() + "' XDG_CACHE_HOME='" + home.string() + "/.cache'";
     CliRun r = runCli(batchArgs(subs, out), env + " env -u MESA_SHADER_CACHE_DISABLE");
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const json summary = summaryOf(out);
     ASSERT_TRUE(summary.is_object()) << r.output;
-    EXPECT_EQ(summary["submissions"].size(), 9u) << summary.dump(1);
+    EXPECT_EQ(summary["submissions"].size(), 10u) << summary.dump(1);
     const std::map<std::string, std::pair<std::string, std::string>> expected = {
         {"alice", {"graded", "passed"}},     {"dave", {"graded", "passed"}},
         {"bob", {"graded", "failed"}},       {"Zoë Ångström", {"graded", "passed"}},
         {"mallory", {"unsafe_archive", ""}}, {"bomb", {"too_large", ""}},
         {"hollow", {"empty", ""}},           {"nothing", {"empty", ""}},
-        {"garbage", {"bad_archive", ""}},
+        {"garbage", {"bad_archive", ""}},    {"eve", {"graded", "missing"}},
     };
     for (const auto& [student, want] : expected) {
         const json* row = rowOf(summary, student);
@@ -399,23 +404,23 @@ TEST(BatchCli, MixedSubmissionsEachGetOneClearStatus) {
     EXPECT_TRUE(fs::is_regular_file(out / "dave" / kLab / "sphere" / "student.png"));
     const json dave = json::parse(readFile(out / "dave" / "report.json"));
     EXPECT_NE(dave["labs"][0]["folder"].get<std::string>().find("/dave/"), std::string::npos) << dave.dump();
-    // alice, dave and Zoë submitted the same files, bob the starter: two gradings in all.
+    // alice, dave and Zoë submitted the same files, bob the starter, eve her symlink: three gradings.
     std::size_t graded = 0;
     for (const fs::directory_entry& e : fs::directory_iterator(out / ".shaderlab" / "labs" / kLab))
         graded += e.is_directory() ? 1 : 0;
-    EXPECT_EQ(graded, 2u);
+    EXPECT_EQ(graded, 3u);
     EXPECT_FALSE(fs::exists(dir / "escaped.txt"));
     EXPECT_FALSE(fs::exists(home / ".cache")) << "something wrote a cache into $HOME";
     // Unchanged: nothing graded again. One changed submission: only it.
     r = runCli(batchArgs(subs, out));
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("(0 graded, 9 unchanged since their report), 0 worker runs"), std::string::npos)
+    EXPECT_NE(r.output.find("(0 graded, 10 unchanged since their report), 0 worker runs"), std::string::npos)
         << r.output;
     for (const char* f : {"phong.vert", "phong.frag"})
         writeFile(subs / "bob" / kLab / f, readFile(kSource / "reference_solutions" / kLab / f));
     r = runCli(batchArgs(subs, out));
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("(1 graded, 8 unchanged since their report), 0 worker runs"), std::string::npos)
+    EXPECT_NE(r.output.find("(1 graded, 9 unchanged since their report), 0 worker runs"), std::string::npos)
         << r.output;  // bob's lab folder is now alice's: its grading is reused
     EXPECT_EQ((*rowOf(summaryOf(out), "bob"))["labs"][kLab]["status"], "passed");
 }

