@@ -498,3 +498,69 @@ TEST(BatchCli, InterruptedResumedAndShardedRunsAgree) {
 }
 
 }  // namespace
+
+namespace {
+
+// The Gradescope bundle, unpacked into a simulated /autograder: its run_autograder grades an
+// upload (flat files, in a folder, as students upload a one-lab assignment) into
+// results/results.json per Gradescope's specification, with the chosen visibility and tests.
+TEST(GradescopeBundle, RunAutograderWritesResultsInASimulatedLayout) {
+    const fs::path dir = scratch("gradescope");
+    const fs::path zip = dir / "autograder.zip";
+    CliRun r = runCli("gradescope-bundle --out '" + zip.string() + "' --lab " + kLab +
+                      " --visibility after_published --tests scenes --timeout 20");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const fs::path root = dir / "autograder";
+    fs::create_directories(root);
+    const batch::ExtractResult x = batch::extractZip(zip.string(), (root / "source").string());
+    ASSERT_EQ(x.status, "ok") << x.message;
+    for (const char* script : {"setup.sh", "run_autograder"}) {
+        const fs::path p = root / "source" / script;
+        ASSERT_TRUE(fs::is_regular_file(p)) << script;
+        EXPECT_NE(fs::status(p).permissions() & fs::perms::owner_exec, fs::perms::none) << script;
+        EXPECT_EQ(runCli("", "bash -n '" + p.string() + "' #").exit_code, 0) << script;
+    }
+    // Only the chosen lab, with its reference solution and the shared scenes.
+    EXPECT_TRUE(fs::is_regular_file(root / "source" / "labs" / kLab / "lab.json"));
+    EXPECT_TRUE(fs::is_directory(root / "source" / "labs" / "scenes"));
+    EXPECT_FALSE(fs::exists(root / "source" / "labs" / "02-toon"));
+    EXPECT_TRUE(fs::is_regular_file(root / "source" / "reference_solutions" / kLab / "phong.frag"));
+
+    auto grade = [&](const std::string& from) {
+        fs::remove_all(root / "submission");
+        fs::remove_all(root / "results");
+        for (const char* f : {"phong.vert", "phong.frag"})
+            writeFile(root / "submission" / "my upload" / f, readFile(fs::path(from) / f));
+        const CliRun run =
+            runCli("", "SHADERLAB_AUTOGRADER_ROOT='" + root.string() + "' SHADERLAB_BIN='" + SHADERLAB_CLI +
+                           "' bash '" + (root / "source" / "run_autograder").string() + "' #");
+        EXPECT_EQ(run.exit_code, 0) << run.output;
+        return json::parse(readFile(root / "results" / "results.json"), nullptr, false);
+    };
+    const json good = grade((kSource / "reference_solutions" / kLab).string());
+    ASSERT_TRUE(good.is_object());
+    EXPECT_DOUBLE_EQ(good["score"].get<double>(), 10.0);
+    EXPECT_EQ(good["visibility"], "after_published");
+    EXPECT_TRUE(good["execution_time"].is_number());
+    ASSERT_GT(good["tests"].size(), 8u);  // one per scene, more than the lab's goals
+    double sum = 0;
+    for (const json& t : good["tests"]) {
+        EXPECT_EQ(t["visibility"], "after_published");
+        EXPECT_EQ(t["status"], "passed") << t.dump();
+        EXPECT_EQ(t["name"].get<std::string>().rfind(kLab + " / ", 0), 0u);
+        sum += t["max_score"].get<double>();
+    }
+    EXPECT_NEAR(sum, 10.0, 1e-9);
+    const json starter = grade((kSource / "labs" / kLab).string());
+    EXPECT_LT(starter["score"].get<double>(), 10.0);
+    bool failed = false;
+    for (const json& t : starter["tests"]) failed = failed || t["status"] == "failed";
+    EXPECT_TRUE(failed);
+    // The bundle's sources configure on their own: CMake finds every file it names.
+    const CliRun configure = runCli(
+        "", "cmake -S '" + (root / "source").string() + "' -B '" + (dir / "build").string() +
+                "' -DSHADERLAB_BUILD_TESTS=OFF -DSHADERLAB_BUILD_BENCH=OFF >/dev/null && echo configured #");
+    EXPECT_NE(configure.output.find("configured"), std::string::npos) << configure.output;
+}
+
+}  // namespace

@@ -128,4 +128,26 @@ struct MergeArgs {
 };
 int runMerge(const MergeArgs& args);
 
+// `shaderlab gradescope-bundle`: the autograder zip of a Gradescope programming assignment.
+struct GradescopeBundleArgs {
+    CommonOptions common;
+    std::string out_zip;
+    std::string reference_root;          // empty: reference_solutions beside labs/
+    std::string visibility = "visible";  // of the results: visible, hidden, after_due_date, after_published
+    std::string tests = "goals";         // one Gradescope test per learning goal, or per scene ("scenes")
+    double timeout_s = 60.0;
+};
+int runGradescopeBundle(const GradescopeBundleArgs& args);
+
+// What the bundle's run_autograder runs: grades <root>/submission into <root>/results/results.json.
+struct GradescopeRunArgs {
+    CommonOptions common;
+    std::string root = "/autograder";
+    std::string reference_root;
+    std::string visibility = "visible";
+    std::string tests = "goals";
+    double timeout_s = 60.0;
+};
+int runGradescopeRun(const GradescopeRunArgs& args);
+
 }  // namespace shaderlab::cli

@@ -155,6 +155,38 @@ int main(int argc, char** argv) {
         ->required();
     merge_cmd->add_option("--out", merge.out_dir, "merged results folder")->required();
 
+    GradescopeBundleArgs bundle;
+    CLI::App* bundle_cmd = app.add_subcommand(
+        "gradescope-bundle",
+        "write the autograder zip of a Gradescope assignment (setup.sh, run_autograder, labs)");
+    bundle_cmd->add_option("--out", bundle.out_zip, "the zip to write, e.g. autograder.zip")->required();
+    bundle_cmd->add_option("--reference", bundle.reference_root,
+                           "reference solutions folder (default: reference_solutions beside labs/)");
+    bundle_cmd->add_option("--visibility", bundle.visibility, "when students see the results")
+        ->check(CLI::IsMember({"visible", "hidden", "after_due_date", "after_published"}))
+        ->capture_default_str();
+    bundle_cmd->add_option("--tests", bundle.tests, "one Gradescope test per learning goal or per scene")
+        ->check(CLI::IsMember({"goals", "scenes"}))
+        ->capture_default_str();
+    bundle_cmd->add_option("--timeout", bundle.timeout_s, "seconds one lab may take to render")
+        ->check(CLI::Range(0.1, 3600.0))
+        ->capture_default_str();
+    bundle_cmd->add_option("--labs", bundle.common.labs_root, "folder holding the labs");
+    bundle_cmd->add_option("--lab", bundle.common.labs, "lab id (repeatable; default: all labs)");
+
+    // Run by the bundle's run_autograder on Gradescope; hidden from --help.
+    GradescopeRunArgs gs_run;
+    CLI::App* gs_run_cmd =
+        app.add_subcommand("gradescope-run", "grade <root>/submission into <root>/results/results.json")
+            ->group("");
+    gs_run_cmd->add_option("--root", gs_run.root)->capture_default_str();
+    gs_run_cmd->add_option("--reference", gs_run.reference_root);
+    gs_run_cmd->add_option("--visibility", gs_run.visibility)
+        ->check(CLI::IsMember({"visible", "hidden", "after_due_date", "after_published"}));
+    gs_run_cmd->add_option("--tests", gs_run.tests)->check(CLI::IsMember({"goals", "scenes"}));
+    gs_run_cmd->add_option("--timeout", gs_run.timeout_s)->check(CLI::Range(0.1, 3600.0));
+    add_common(gs_run_cmd, &gs_run.common);
+
     std::string info_backend = "osmesa";
     CLI::App* info_cmd = app.add_subcommand("info", "print the OpenGL context a backend gives");
     info_cmd->add_option("--backend", info_backend)->check(CLI::IsMember({"osmesa", "egl"}));
@@ -177,5 +209,7 @@ int main(int argc, char** argv) {
     if (batch_cmd->parsed()) return runBatch(batch);
     if (worker_cmd->parsed()) return runBatchWorker(worker);
     if (merge_cmd->parsed()) return runMerge(merge);
+    if (bundle_cmd->parsed()) return runGradescopeBundle(bundle);
+    if (gs_run_cmd->parsed()) return runGradescopeRun(gs_run);
     return 2;
 }

@@ -181,7 +181,10 @@ ExtractResult extractZip(const std::string& zip_path, const std::string& dest_di
                         "entry '" + shown + "' is not a file, a folder or a symlink (a device?)");
         fs::create_directories(dest.parent_path(), ec);
         if (ec) return fail("unsafe_archive", "entry '" + shown + "': " + ec.message());
-        const int fd = open(dest.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+        // Permissions: read-write for the owner, and executable when the zip says so (a script of
+        // a bundle); nothing else of the zip's mode (no set-uid, no world-writable).
+        const mode_t perm = (archive_entry_perm(entry) & 0100) ? 0755 : 0644;
+        const int fd = open(dest.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, perm);
         if (fd < 0)
             return fail(
                 errno == EEXIST ? "unsafe_archive" : "bad_archive",
@@ -235,6 +238,52 @@ ExtractResult extractZip(const std::string& zip_path, const std::string& dest_di
     }
     result.status = "ok";
     return result;
+}
+
+bool writeZip(const std::string& zip_path, const std::vector<ZipItem>& items, std::string* error) {
+    const std::string tmp = zip_path + ".tmp-" + std::to_string(getpid());
+    archive* a = archive_write_new();
+    archive_write_set_format_zip(a);
+    auto fail = [&](const std::string& why) {
+        *error = zip_path + ": " + why;
+        archive_write_free(a);
+        unlink(tmp.c_str());
+        return false;
+    };
+    if (archive_write_open_filename(a, tmp.c_str()) != ARCHIVE_OK) return fail(archive_error_string(a));
+    for (const ZipItem& item : items) {
+        std::string bytes = item.data;
+        if (!item.source_path.empty()) {
+            const int fd = open(item.source_path.c_str(), O_RDONLY | O_CLOEXEC);
+            if (fd < 0) return fail(item.source_path + ": " + std::strerror(errno));
+            char buf[1 << 16];
+            ssize_t n;
+            while ((n = read(fd, buf, sizeof buf)) > 0) bytes.append(buf, static_cast<std::size_t>(n));
+            close(fd);
+            if (n < 0) return fail(item.source_path + ": " + std::strerror(errno));
+        }
+        archive_entry* entry = archive_entry_new();
+        archive_entry_set_pathname_utf8(entry, item.name.c_str());
+        archive_entry_set_filetype(entry, AE_IFREG);
+        archive_entry_set_perm(entry, item.executable ? 0755 : 0644);
+        archive_entry_set_size(entry, static_cast<la_int64_t>(bytes.size()));
+        archive_entry_set_mtime(entry, 315532800, 0);  // 1980-01-01: the same sources give the same zip
+        const bool ok = archive_write_header(a, entry) == ARCHIVE_OK &&
+                        (bytes.empty() || archive_write_data(a, bytes.data(), bytes.size()) ==
+                                              static_cast<la_ssize_t>(bytes.size()));
+        archive_entry_free(entry);
+        if (!ok)
+            return fail(item.name + ": " +
+                        (archive_error_string(a) ? archive_error_string(a) : "write failed"));
+    }
+    if (archive_write_close(a) != ARCHIVE_OK) return fail(archive_error_string(a));
+    archive_write_free(a);
+    if (rename(tmp.c_str(), zip_path.c_str()) != 0) {
+        *error = zip_path + ": " + std::strerror(errno);
+        unlink(tmp.c_str());
+        return false;
+    }
+    return true;
 }
 
 }  // namespace shaderlab::batch

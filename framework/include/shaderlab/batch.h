@@ -60,6 +60,17 @@ struct ExtractResult {
 ExtractResult extractZip(const std::string& zip_path, const std::string& dest_dir,
                          const ArchiveLimits& limits = {});
 
+// One file of a zip to write: its name inside, and its bytes (`data`) or the file they come from.
+struct ZipItem {
+    std::string name;
+    std::string source_path;  // empty: `data`
+    std::string data;
+    bool executable = false;  // mode 0755 instead of 0644
+};
+
+// Writes a zip (deflate) of `items`, atomically (a temporary file renamed over `zip_path`).
+bool writeZip(const std::string& zip_path, const std::vector<ZipItem>& items, std::string* error);
+
 // ---- hashing -----------------------------------------------------------------------------------
 
 // xxHash XXH3 (64 bit), streaming.
