@@ -425,6 +425,27 @@ TEST(BatchCli, MixedSubmissionsEachGetOneClearStatus) {
     EXPECT_EQ((*rowOf(summaryOf(out), "bob"))["labs"][kLab]["status"], "passed");
 }
 
+// A worker that dies (here: an address-space limit too small for the program to start) costs its
+// lab a "crashed" with the reason and the worker's log, exit code 1; the next run grades it.
+TEST(BatchCli, AWorkerThatDiesIsNamedAndRetried) {
+    const fs::path dir = scratch("worker_dies");
+    copyReference(dir / "subs" / "alice");
+    CliRun r = runCli(batchArgs(dir / "subs", dir / "out", "--memory 64M --no-reference"));
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    const json report = json::parse(readFile(dir / "out" / "alice" / "report.json"), nullptr, false);
+    ASSERT_TRUE(report.is_object()) << r.output;
+    EXPECT_EQ(report["labs"][0]["status"], "crashed");
+    const std::string message = report["labs"][0]["message"];
+    EXPECT_NE(message.find("the grading process stopped"), std::string::npos) << message;
+    EXPECT_NE(message.find("log: " + (dir / "out" / ".shaderlab" / "logs").string()), std::string::npos)
+        << message;
+    EXPECT_FALSE(fs::exists(dir / "out" / "alice" / "batch.json"));
+    r = runCli(batchArgs(dir / "subs", dir / "out", "--no-reference"));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("(1 graded, 0 unchanged"), std::string::npos) << r.output;
+    EXPECT_EQ((*rowOf(summaryOf(dir / "out"), "alice"))["labs"][kLab]["status"], "passed");
+}
+
 // A batch killed with SIGKILL half-way leaves no process; run again it finishes what was missing
 // and ends with the summary of a run never interrupted. Two shards merged give it too.
 TEST(BatchCli, InterruptedResumedAndShardedRunsAgree) {

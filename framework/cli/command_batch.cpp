@@ -174,6 +174,15 @@ std::string describeExit(int wstatus) {
     return "exit code " + std::to_string(WEXITSTATUS(wstatus));
 }
 
+// ": <the last line of a worker's log>; log: <path>", for the message of a worker that failed.
+std::string lastLogLine(const std::string& log) {
+    std::istringstream in(readText(log, 1u << 20));
+    std::string line, last;
+    while (std::getline(in, line))
+        if (!line.empty()) last = line;
+    return (last.empty() ? std::string() : ": " + batch::printable(last, 300)) + "; log: " + log;
+}
+
 // The GL renderer a worker would see, for the reference cache key: `shaderlab info`, in a child.
 std::string probeRenderer(const std::string& exe, const std::string& backend, const fs::path& log) {
     const Spawned s = spawnWorker({exe, "info", "--backend", backend}, log.string(), std::size_t(8) << 30);
@@ -203,6 +212,7 @@ struct Job {
     double watchdog_s = 0.0;
     bool done = false, ok = false;
     std::string error;
+    std::string log;                   // its stdout and stderr
     std::vector<std::size_t> waiting;  // submissions
 };
 
@@ -295,7 +305,8 @@ grader::Report assembleReport(const Submission& sub, const std::vector<LabPlan>&
         } else if (!jobs[j].ok) {
             lab.status = "crashed";
             lab.message = "the grading process stopped (" + jobs[j].error +
-                          "): this is a fault of shaderlab, not of the submission; run the batch again";
+                          "): not the submission's fault; the next run of the batch grades it again (a "
+                          "--memory too small for the program itself?)";
         } else {
             grader::Report one;
             std::string err;
@@ -770,6 +781,7 @@ int runBatch(const BatchArgs& args) {
                                      ((job.kind == Job::Reference ? "reference-" : "grade-") + job.lab + "-" +
                                       fs::path(job.final_dir).filename().string() + ".log"))
                                         .string();
+            job.log = log;
             const Spawned s = spawnWorker(job.argv, log, memory);
             if (s.pid < 0) {
                 complete(pick, false, s.error);
@@ -793,7 +805,7 @@ int runBatch(const BatchArgs& args) {
                 job.kind == Job::Grade ? fs::path(job.final_dir) / "report.json" : fs::path(job.final_dir),
                 ec);
             const bool ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0 && landed;
-            complete(j, ok, ok ? std::string() : describeExit(wstatus));
+            complete(j, ok, ok ? std::string() : describeExit(wstatus) + lastLogLine(job.log));
             continue;
         }
         if (pid < 0 && errno == ECHILD) break;
