@@ -440,10 +440,27 @@ TEST(BatchCli, AWorkerThatDiesIsNamedAndRetried) {
     EXPECT_NE(message.find("log: " + (dir / "out" / ".shaderlab" / "logs").string()), std::string::npos)
         << message;
     EXPECT_FALSE(fs::exists(dir / "out" / "alice" / "batch.json"));
+    // Symlinks planted in the results folder are replaced, never written through.
+    writeFile(dir / "victim" / "keep.txt", "keep");
+    fs::remove_all(dir / "out" / "alice");
+    fs::create_directory_symlink(dir / "victim", dir / "out" / "alice");
+    fs::remove(dir / "out" / "summary.csv");
+    fs::create_symlink(dir / "victim" / "keep.txt", dir / "out" / "summary.csv");
     r = runCli(batchArgs(dir / "subs", dir / "out", "--no-reference"));
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("(1 graded, 0 unchanged"), std::string::npos) << r.output;
     EXPECT_EQ((*rowOf(summaryOf(dir / "out"), "alice"))["labs"][kLab]["status"], "passed");
+    EXPECT_EQ(readFile(dir / "victim" / "keep.txt"), "keep");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "victim"), fs::directory_iterator()), 1);
+    EXPECT_FALSE(fs::is_symlink(dir / "out" / "alice"));
+    EXPECT_FALSE(fs::is_symlink(dir / "out" / "summary.csv"));
+    // The batch's own folder planted as a symlink: refused before any work.
+    fs::remove_all(dir / "out" / ".shaderlab");
+    fs::create_directory_symlink(dir / "victim", dir / "out" / ".shaderlab");
+    r = runCli(batchArgs(dir / "subs", dir / "out", "--no-reference"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("is a symlink"), std::string::npos) << r.output;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "victim"), fs::directory_iterator()), 1);
 }
 
 // A batch killed with SIGKILL half-way leaves no process; run again it finishes what was missing

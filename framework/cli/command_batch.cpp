@@ -528,6 +528,10 @@ int runBatch(const BatchArgs& args) {
     }
     fs::remove(out / ".shaderlab-write-test", ec);
     const fs::path state = out / kStateDir;
+    if (fs::is_symlink(state, ec)) {  // everything of ours goes in there: it must be ours
+        std::cerr << "shaderlab: " << state.string() << " is a symlink; remove it\n";
+        return 2;
+    }
     fs::create_directories(state, ec);
     batch::FolderLock lock;
     if (!lock.acquire((state / "lock").string(), &error)) {
@@ -946,6 +950,10 @@ int runMerge(const MergeArgs& args) {
     }
     fs::remove(out / ".shaderlab-write-test", ec);
     batch::FolderLock lock;
+    if (fs::is_symlink(out / kStateDir, ec)) {
+        std::cerr << "shaderlab: " << (out / kStateDir).string() << " is a symlink; remove it\n";
+        return 2;
+    }
     fs::create_directories(out / kStateDir, ec);
     if (!lock.acquire((out / kStateDir / "lock").string(), &error)) {
         std::cerr << "shaderlab: " << out.string() << ": " << error << "\n";
