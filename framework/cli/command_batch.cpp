@@ -711,6 +711,18 @@ int runBatch(const BatchArgs& args) {
         subs.push_back(std::move(sub));
     }
 
+    // Zips unpacked for an earlier version of a submission are of no use any more (shards have
+    // results folders of their own, so every submission of this folder is in this list).
+    {
+        std::set<std::string> current;
+        for (const Submission& sub : subs)
+            if (sub.source.is_zip) current.insert(sub.folder_name + "-" + sub.key);
+        std::vector<fs::path> stale;
+        for (const fs::directory_entry& e : fs::directory_iterator(state / "work", ec))
+            if (!current.count(e.path().filename().string())) stale.push_back(e.path());
+        for (const fs::path& p : stale) fs::remove_all(p, ec);
+    }
+
     Progress progress(subs.size());
     int exit_code = 0;
     auto finishSubmission = [&](Submission& sub) {
