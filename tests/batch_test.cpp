@@ -592,7 +592,15 @@ TEST(GradescopeBundle, RunAutograderWritesResultsInASimulatedLayout) {
     const json starter = grade((kSource / "labs" / kLab).string());
     EXPECT_LT(starter["score"].get<double>(), 10.0);
     bool failed = false;
-    for (const json& t : starter["tests"]) failed = failed || t["status"] == "failed";
+    for (const json& t : starter["tests"]) {
+        if (t["status"] != "failed") continue;
+        failed = true;
+        // A failing scene shows the pictures: the student's, the reference's, the difference.
+        EXPECT_EQ(t["output_format"], "html");
+        EXPECT_NE(t["output"].get<std::string>().find("<img src=\"data:image/png;base64,iVBORw0KGgo"),
+                  std::string::npos)
+            << t["output"];
+    }
     EXPECT_TRUE(failed);
     // The bundle's sources configure on their own: CMake finds every file it names.
     const CliRun configure = runCli(

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -92,6 +93,52 @@ bool stageFlatUpload(const fs::path& upload, const LabSpec& spec, const fs::path
         any = any || !ec;
     }
     return any;
+}
+
+std::string escapeHtml(const std::string& text) {
+    std::string out;
+    for (char c : batch::printable(text, 4000)) {
+        switch (c) {
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '&':
+                out += "&amp;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
+        }
+    }
+    return out;
+}
+
+// A PNG file as a data: URI (RFC 2397, base64 per RFC 4648), while `budget` bytes of URI are left;
+// empty when the file is missing or the budget is spent.
+std::string pngDataUri(const fs::path& png, std::size_t* budget) {
+    std::ifstream in(png, std::ios::binary);
+    if (!in) return {};
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::size_t size = 22 + (bytes.size() + 2) / 3 * 4;
+    if (bytes.empty() || size > *budget) return {};
+    *budget -= size;
+    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out = "data:image/png;base64,";
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        const std::uint32_t n = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16 |
+                                (i + 1 < bytes.size() ? static_cast<unsigned char>(bytes[i + 1]) << 8 : 0) |
+                                (i + 2 < bytes.size() ? static_cast<unsigned char>(bytes[i + 2]) : 0);
+        out += digits[(n >> 18) & 63];
+        out += digits[(n >> 12) & 63];
+        out += i + 1 < bytes.size() ? digits[(n >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? digits[n & 63] : '=';
+    }
+    return out;
 }
 
 }  // namespace
@@ -213,19 +260,36 @@ int runGradescopeRun(const GradescopeRunArgs& args) {
     json out = json::parse(grader::reportToGradescope(report, {options.out_dir, 2u << 20}), nullptr, false);
     if (args.tests == "scenes") {
         // One test per scene instead of per goal: the goal's points shared among its scenes.
+        // (Goals' outputs are written by grader::reportToGradescope; these are simpler.)
         json tests = json::array();
         for (const json& t : out["tests"])
             if (t.value("output_format", "") == "text") tests.push_back(t);  // a lab that did not render
+        std::size_t budget = 2u << 20;  // of embedded pictures in all, as for the goals' tests
         for (const grader::ReportLab& lab : report.labs) {
             for (const grader::ReportScene& s : lab.scenes) {
-                std::string text = s.status == "passed" ? "passed" : s.message;
-                if (!s.hint.mistake.empty()) text += "\nThis looks like a known mistake: " + s.hint.about;
+                std::string html = "<p>" + escapeHtml(s.status == "passed" ? "passed" : s.message) + "</p>\n";
+                if (!s.hint.mistake.empty())
+                    html += "<p>This looks like a known mistake: " + escapeHtml(s.hint.about) + "</p>\n";
+                // A failing scene shows the student's picture beside the reference's and the difference.
+                if (s.status != "passed") {
+                    std::string pictures;
+                    for (const auto& [label, file] :
+                         {std::pair<std::string, std::string>{"yours", s.student_image},
+                          {"reference", s.reference_image},
+                          {"difference (FLIP)", s.diff_image}}) {
+                        const std::string uri = pngDataUri(fs::path(options.out_dir) / file, &budget);
+                        if (!file.empty() && !uri.empty())
+                            pictures += "<figure><img src=\"" + uri + "\" alt=\"" + label +
+                                        "\" width=\"160\"><figcaption>" + label + "</figcaption></figure>\n";
+                    }
+                    html += pictures;
+                }
                 tests.push_back({{"name", lab.id + " / " + s.name},
                                  {"score", s.score},
                                  {"max_score", s.max_score},
                                  {"status", s.status == "passed" ? "passed" : "failed"},
-                                 {"output", text},
-                                 {"output_format", "text"}});
+                                 {"output", html},
+                                 {"output_format", "html"}});
             }
         }
         out["tests"] = tests;
