@@ -377,6 +377,9 @@ TEST(BatchCli, MixedSubmissionsEachGetOneClearStatus) {
     const json summary = summaryOf(out);
     ASSERT_TRUE(summary.is_object()) << r.output;
     EXPECT_EQ(summary["submissions"].size(), 10u) << summary.dump(1);
+    // Not a terminal: one plain line per submission, no bar, no escapes.
+    EXPECT_NE(r.output.find("/10] alice: graded 10.00 / 10.00\n"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("\033["), std::string::npos) << r.output;
     const std::map<std::string, std::pair<std::string, std::string>> expected = {
         {"alice", {"graded", "passed"}},     {"dave", {"graded", "passed"}},
         {"bob", {"graded", "failed"}},       {"Zoë Ångström", {"graded", "passed"}},
