@@ -12,6 +12,7 @@
 //     content and settings did not change since its report is skipped.
 // See docs/instructors.md.
 #include <fcntl.h>
+#include <sched.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -283,6 +284,14 @@ class Progress {
     Clock::time_point t0_, last_draw_{};
     std::string last_name_;
 };
+
+// The cores this process may run on (a Slurm task or a container may get fewer than the machine has).
+int usableCores() {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+    return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
 
 bool reservedName(const std::string& name) { return name == "summary.csv" || name == "summary.json"; }
 
@@ -557,9 +566,7 @@ int runBatch(const BatchArgs& args) {
         args.no_reference ? std::string()
                           : (args.reference_root.empty() ? defaultReferenceRootOf(labs_root)
                                                          : fs::absolute(args.reference_root, ec).string());
-    const int jobs_max = std::max(
-        1, std::min(kMaxWorkers,
-                    args.jobs > 0 ? args.jobs : static_cast<int>(std::thread::hardware_concurrency())));
+    const int jobs_max = std::max(1, std::min(kMaxWorkers, args.jobs > 0 ? args.jobs : usableCores()));
     char timeout_text[32];
     std::snprintf(timeout_text, sizeof timeout_text, "%g", args.timeout_s);
 
