@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -126,5 +127,62 @@ struct CorpusArgs {
     double timeout_s = 10.0;
 };
 int runCorpus(const CorpusArgs& args);
+
+// `shaderlab batch`: every submission (folder or .zip) below `submissions_dir`, each lab in a
+// worker process; see command_batch.cpp and docs/instructors.md.
+struct BatchArgs {
+    CommonOptions common;
+    std::string submissions_dir;
+    std::string out_dir;
+    std::string reference_root;  // empty: reference_solutions beside labs/
+    bool no_reference = false;
+    std::string cache_dir;  // reference renders; empty: <out>/.shaderlab/references
+    int jobs = 0;           // 0: the number of cores
+    double timeout_s = 60.0;
+    std::string memory = "6G";  // address space of each worker and render process
+    std::string shard;          // "K/N": every N-th submission from the K-th; empty: all
+    std::vector<std::string> formats;
+    std::uint64_t max_unpacked_mib = 64;
+};
+int runBatch(const BatchArgs& args);
+
+// The worker the batch starts for one unit of work (not for people: hidden from --help).
+struct BatchWorkerArgs {
+    std::string mode;  // grade | reference
+    std::string labs_root, lab, backend = "osmesa";
+    std::string submission, out_dir, goldens_root, reference_root;
+    double timeout_s = 60.0;
+    std::string memory = "6G";
+};
+int runBatchWorker(const BatchWorkerArgs& args);
+
+// `shaderlab merge`: the summaries (and report folders) of several results folders in one.
+struct MergeArgs {
+    std::vector<std::string> inputs;
+    std::string out_dir;
+};
+int runMerge(const MergeArgs& args);
+
+// `shaderlab gradescope-bundle`: the autograder zip of a Gradescope programming assignment.
+struct GradescopeBundleArgs {
+    CommonOptions common;
+    std::string out_zip;
+    std::string reference_root;          // empty: reference_solutions beside labs/
+    std::string visibility = "visible";  // of the results: visible, hidden, after_due_date, after_published
+    std::string tests = "goals";         // one Gradescope test per learning goal, or per scene ("scenes")
+    double timeout_s = 60.0;
+};
+int runGradescopeBundle(const GradescopeBundleArgs& args);
+
+// What the bundle's run_autograder runs: grades <root>/submission into <root>/results/results.json.
+struct GradescopeRunArgs {
+    CommonOptions common;
+    std::string root = "/autograder";
+    std::string reference_root;
+    std::string visibility = "visible";
+    std::string tests = "goals";
+    double timeout_s = 60.0;
+};
+int runGradescopeRun(const GradescopeRunArgs& args);
 
 }  // namespace shaderlab::cli

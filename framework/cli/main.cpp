@@ -164,6 +164,89 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     add_common(corpus_cmd, &corpus.common);
 
+    BatchArgs batch;
+    CLI::App* batch_cmd = app.add_subcommand(
+        "batch",
+        "grade every submission (a folder or a .zip) of a folder: one report each, summary.csv/json");
+    batch_cmd
+        ->add_option("submissions", batch.submissions_dir, "folder of submissions (folders or .zip files)")
+        ->required();
+    batch_cmd->add_option("--out", batch.out_dir, "results folder")->required();
+    batch_cmd->add_option("--jobs,-j", batch.jobs, "labs graded at once (default: the number of cores)")
+        ->check(CLI::Range(1, 256));
+    batch_cmd->add_option("--timeout", batch.timeout_s, "seconds one lab may take to render")
+        ->check(CLI::Range(0.1, 86400.0))
+        ->capture_default_str();
+    batch_cmd
+        ->add_option("--memory", batch.memory, "address space of each worker and render process (e.g. 4G)")
+        ->capture_default_str();
+    batch_cmd->add_option("--shard", batch.shard,
+                          "K/N: grade only every N-th submission, from the K-th (job arrays)");
+    batch_cmd->add_option("--reference", batch.reference_root,
+                          "reference solutions folder (default: reference_solutions beside labs/)");
+    batch_cmd->add_flag("--no-reference", batch.no_reference, "grade against the stored golden images");
+    batch_cmd->add_option("--cache", batch.cache_dir,
+                          "where reference renders are kept (default: <out>/.shaderlab/references)");
+    batch_cmd->add_option("--format", batch.formats, "extra report formats: gradescope (results.json), junit")
+        ->check(CLI::IsMember({"json", "gradescope", "junit"}));
+    batch_cmd->add_option("--max-unpacked", batch.max_unpacked_mib, "MiB a submitted zip may unpack to")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
+    add_common(batch_cmd, &batch.common);
+
+    BatchWorkerArgs worker;
+    // Started by `batch` for each unit of work; not for people, so hidden from --help.
+    CLI::App* worker_cmd = app.add_subcommand("batch-worker", "grade one lab for `batch`")->group("");
+    worker_cmd->add_option("--mode", worker.mode)->required()->check(CLI::IsMember({"grade", "reference"}));
+    worker_cmd->add_option("--labs", worker.labs_root)->required();
+    worker_cmd->add_option("--lab", worker.lab)->required();
+    worker_cmd->add_option("--out", worker.out_dir)->required();
+    worker_cmd->add_option("--backend", worker.backend);
+    worker_cmd->add_option("--submission", worker.submission);
+    worker_cmd->add_option("--goldens", worker.goldens_root);
+    worker_cmd->add_option("--reference", worker.reference_root);
+    worker_cmd->add_option("--timeout", worker.timeout_s);
+    worker_cmd->add_option("--memory", worker.memory);
+
+    MergeArgs merge;
+    CLI::App* merge_cmd = app.add_subcommand(
+        "merge", "merge the results folders of batch shards: summary.csv/json and reports");
+    merge_cmd->add_option("results", merge.inputs, "results folders of `shaderlab batch --shard`")
+        ->required();
+    merge_cmd->add_option("--out", merge.out_dir, "merged results folder")->required();
+
+    GradescopeBundleArgs bundle;
+    CLI::App* bundle_cmd = app.add_subcommand(
+        "gradescope-bundle",
+        "write the autograder zip of a Gradescope assignment (setup.sh, run_autograder, labs)");
+    bundle_cmd->add_option("--out", bundle.out_zip, "the zip to write, e.g. autograder.zip")->required();
+    bundle_cmd->add_option("--reference", bundle.reference_root,
+                           "reference solutions folder (default: reference_solutions beside labs/)");
+    bundle_cmd->add_option("--visibility", bundle.visibility, "when students see the results")
+        ->check(CLI::IsMember({"visible", "hidden", "after_due_date", "after_published"}))
+        ->capture_default_str();
+    bundle_cmd->add_option("--tests", bundle.tests, "one Gradescope test per learning goal or per scene")
+        ->check(CLI::IsMember({"goals", "scenes"}))
+        ->capture_default_str();
+    bundle_cmd->add_option("--timeout", bundle.timeout_s, "seconds one lab may take to render")
+        ->check(CLI::Range(0.1, 3600.0))
+        ->capture_default_str();
+    bundle_cmd->add_option("--labs", bundle.common.labs_root, "folder holding the labs");
+    bundle_cmd->add_option("--lab", bundle.common.labs, "lab id (repeatable; default: all labs)");
+
+    // Run by the bundle's run_autograder on Gradescope; hidden from --help.
+    GradescopeRunArgs gs_run;
+    CLI::App* gs_run_cmd =
+        app.add_subcommand("gradescope-run", "grade <root>/submission into <root>/results/results.json")
+            ->group("");
+    gs_run_cmd->add_option("--root", gs_run.root)->capture_default_str();
+    gs_run_cmd->add_option("--reference", gs_run.reference_root);
+    gs_run_cmd->add_option("--visibility", gs_run.visibility)
+        ->check(CLI::IsMember({"visible", "hidden", "after_due_date", "after_published"}));
+    gs_run_cmd->add_option("--tests", gs_run.tests)->check(CLI::IsMember({"goals", "scenes"}));
+    gs_run_cmd->add_option("--timeout", gs_run.timeout_s)->check(CLI::Range(0.1, 3600.0));
+    add_common(gs_run_cmd, &gs_run.common);
+
     std::string info_backend = "osmesa";
     CLI::App* info_cmd = app.add_subcommand("info", "print the OpenGL context a backend gives");
     info_cmd->add_option("--backend", info_backend)->check(CLI::IsMember({"osmesa", "egl"}));
@@ -185,5 +268,10 @@ int main(int argc, char** argv) {
     if (watch_cmd->parsed()) return runWatch(watch);
     if (goldens_cmd->parsed()) return runGoldens(goldens);
     if (corpus_cmd->parsed()) return runCorpus(corpus);
+    if (batch_cmd->parsed()) return runBatch(batch);
+    if (worker_cmd->parsed()) return runBatchWorker(worker);
+    if (merge_cmd->parsed()) return runMerge(merge);
+    if (bundle_cmd->parsed()) return runGradescopeBundle(bundle);
+    if (gs_run_cmd->parsed()) return runGradescopeRun(gs_run);
     return 2;
 }

@@ -1,0 +1,315 @@
+// `shaderlab gradescope-bundle` (the autograder zip an instructor uploads to Gradescope) and
+// `shaderlab gradescope-run` (what its run_autograder runs for each submission).
+//
+// The bundle holds the shaderlab sources (built on Gradescope's image by setup.sh with the
+// course's own scripts/setup.sh), the chosen labs and their reference solutions. Gradescope's
+// layout (its autograder specification, "Autograder Specifications"): the zip is unpacked into
+// /autograder/source, setup.sh runs once, then run_autograder runs for each submission with the
+// student's files in /autograder/submission and must write /autograder/results/results.json.
+// $SHADERLAB_AUTOGRADER_ROOT stands for /autograder, so that a test can simulate the layout.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "grader/report.h"
+#include "shaderlab/batch.h"
+#include "shaderlab/grading.h"
+#include "shaderlab/lab_catalog.h"
+#include "shaderlab/lab_spec.h"
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+namespace shaderlab::cli {
+
+namespace {
+
+// Every regular file below `dir` (symlinks neither followed nor kept), as zip items under `prefix`.
+void addFolder(const fs::path& dir, const std::string& prefix, std::vector<batch::ZipItem>* items,
+               const std::vector<std::string>& skip = {}) {
+    std::error_code ec;
+    std::vector<batch::ZipItem> found;
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (std::find(skip.begin(), skip.end(), name) != skip.end() || name.rfind(".", 0) == 0) {
+            if (it->is_directory(ec)) it.disable_recursion_pending();
+            continue;
+        }
+        if (!it->is_symlink(ec) && it->is_regular_file(ec)) {
+            batch::ZipItem item;
+            item.name = prefix + it->path().lexically_relative(dir).generic_string();
+            item.source_path = it->path().string();
+            item.executable =
+                (fs::status(it->path(), ec).permissions() & fs::perms::owner_exec) != fs::perms::none;
+            found.push_back(std::move(item));
+        }
+    }
+    std::sort(found.begin(), found.end(),
+              [](const batch::ZipItem& a, const batch::ZipItem& b) { return a.name < b.name; });
+    items->insert(items->end(), found.begin(), found.end());
+}
+
+std::string shellQuote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+const char* kSetupScript = R"sh(#!/usr/bin/env bash
+# Gradescope runs this once, when it builds the autograder's image: the Debian packages shaderlab
+# needs and the build, with the course's own scripts/setup.sh. Written by `shaderlab gradescope-bundle`.
+set -euo pipefail
+cd "$(dirname "$0")"
+bash scripts/setup.sh -DCMAKE_BUILD_TYPE=Release -DSHADERLAB_BUILD_TESTS=OFF -DSHADERLAB_BUILD_BENCH=OFF
+)sh";
+
+// A lab's student files, found anywhere in an upload that does not mirror labs/ (a student who
+// uploads phong.vert and phong.frag of a one-lab assignment), copied into <into>/<lab>/.
+bool stageFlatUpload(const fs::path& upload, const LabSpec& spec, const fs::path& into) {
+    bool any = false;
+    std::error_code ec;
+    for (const std::string& file : spec.student_files) {
+        std::vector<fs::path> candidates;
+        for (fs::recursive_directory_iterator it(upload, ec), end; !ec && it != end; it.increment(ec)) {
+            if (it->path().filename() == fs::path(file).filename() && !it->is_symlink(ec) &&
+                it->is_regular_file(ec))
+                candidates.push_back(it->path());
+        }
+        if (candidates.empty()) continue;
+        std::sort(candidates.begin(), candidates.end());  // the shallowest first, then by name
+        std::stable_sort(candidates.begin(), candidates.end(), [](const fs::path& a, const fs::path& b) {
+            return std::distance(a.begin(), a.end()) < std::distance(b.begin(), b.end());
+        });
+        const fs::path dest = into / spec.id / file;
+        fs::create_directories(dest.parent_path(), ec);
+        fs::copy_file(candidates.front(), dest, fs::copy_options::overwrite_existing, ec);
+        any = any || !ec;
+    }
+    return any;
+}
+
+std::string escapeHtml(const std::string& text) {
+    std::string out;
+    for (char c : batch::printable(text, 4000)) {
+        switch (c) {
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '&':
+                out += "&amp;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
+        }
+    }
+    return out;
+}
+
+// A PNG file as a data: URI (RFC 2397, base64 per RFC 4648), while `budget` bytes of URI are left;
+// empty when the file is missing or the budget is spent.
+std::string pngDataUri(const fs::path& png, std::size_t* budget) {
+    std::ifstream in(png, std::ios::binary);
+    if (!in) return {};
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::size_t size = 22 + (bytes.size() + 2) / 3 * 4;
+    if (bytes.empty() || size > *budget) return {};
+    *budget -= size;
+    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out = "data:image/png;base64,";
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        const std::uint32_t n = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16 |
+                                (i + 1 < bytes.size() ? static_cast<unsigned char>(bytes[i + 1]) << 8 : 0) |
+                                (i + 2 < bytes.size() ? static_cast<unsigned char>(bytes[i + 2]) : 0);
+        out += digits[(n >> 18) & 63];
+        out += digits[(n >> 12) & 63];
+        out += i + 1 < bytes.size() ? digits[(n >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? digits[n & 63] : '=';
+    }
+    return out;
+}
+
+}  // namespace
+
+int runGradescopeBundle(const GradescopeBundleArgs& args) {
+    std::string labs_root;
+    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
+    const fs::path source = fs::path(labs_root).parent_path();
+    std::error_code ec;
+    for (const char* needed :
+         {"CMakeLists.txt", "framework", "grader", "cmake", "scripts/setup.sh", "docs/lab.schema.json"}) {
+        if (!fs::exists(source / needed, ec)) {
+            std::cerr << "shaderlab: " << (source / needed).string()
+                      << " not found: gradescope-bundle packs the shaderlab source tree the labs are in\n";
+            return 2;
+        }
+    }
+    const std::vector<std::string> all_ids = listLabIds(labs_root);
+    const std::vector<std::string> ids = args.common.labs.empty() ? all_ids : args.common.labs;
+    for (const std::string& id : ids) {
+        const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / id).string());
+        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
+        if (!parsed.ok) return 2;
+    }
+    const fs::path reference =
+        args.reference_root.empty() ? source / "reference_solutions" : fs::path(args.reference_root);
+
+    std::vector<batch::ZipItem> items;
+    items.push_back({"setup.sh", "", kSetupScript, true});
+    std::string run = R"sh(#!/usr/bin/env bash
+# Gradescope runs this for each submission: the student's files are in /autograder/submission, the
+# results go to /autograder/results/results.json. Written by `shaderlab gradescope-bundle`.
+# SHADERLAB_AUTOGRADER_ROOT replaces /autograder and SHADERLAB_BIN the program (for tests).
+set -uo pipefail
+root="${SHADERLAB_AUTOGRADER_ROOT:-/autograder}"
+source_dir="$root/source"
+bin="${SHADERLAB_BIN:-$source_dir/build/framework/shaderlab}"
+if [ ! -x "$bin" ]; then
+  echo "run_autograder: $bin is missing: setup.sh did not build shaderlab" >&2
+  exit 2
+fi
+exec "$bin" gradescope-run --root "$root" --labs "$source_dir/labs" --reference "$source_dir/reference_solutions" \
+)sh";
+    for (const std::string& id : ids) run += "  --lab " + shellQuote(id) + " \\\n";
+    char timeout[32];
+    std::snprintf(timeout, sizeof timeout, "%g", args.timeout_s);
+    run += "  --visibility " + shellQuote(args.visibility) + " --tests " + shellQuote(args.tests) +
+           " --timeout " + timeout + "\n";
+    items.push_back({"run_autograder", "", run, true});
+
+    for (const char* file : {"CMakeLists.txt", "README.md", "scripts/setup.sh", "docs/lab.schema.json"})
+        if (fs::is_regular_file(source / file, ec))
+            items.push_back({file, (source / file).string(), "", false});
+    for (const char* folder : {"cmake", "framework", "grader"})
+        addFolder(source / folder, std::string(folder) + "/", &items, {"build", "tests"});
+    // The labs chosen, the folders they share (scenes, textures), and their reference solutions.
+    for (const fs::directory_entry& e : fs::directory_iterator(labs_root, ec)) {
+        const std::string name = e.path().filename().string();
+        const bool is_lab = std::find(all_ids.begin(), all_ids.end(), name) != all_ids.end();
+        if (e.is_regular_file(ec))
+            items.push_back({"labs/" + name, e.path().string(), "", false});
+        else if (e.is_directory(ec) && (!is_lab || std::find(ids.begin(), ids.end(), name) != ids.end()))
+            addFolder(e.path(), "labs/" + name + "/", &items);
+    }
+    for (const std::string& id : ids)
+        if (fs::is_directory(reference / id, ec))
+            addFolder(reference / id, "reference_solutions/" + id + "/", &items);
+
+    std::string error;
+    if (!batch::writeZip(args.out_zip, items, &error)) {
+        std::cerr << "shaderlab: " << error << "\n";
+        return 2;
+    }
+    std::printf("%s: %zu files, labs", args.out_zip.c_str(), items.size());
+    for (const std::string& id : ids) std::printf(" %s", id.c_str());
+    std::printf(
+        "\nupload it as the autograder of a Gradescope programming assignment (docs/instructors.md)\n");
+    return 0;
+}
+
+int runGradescopeRun(const GradescopeRunArgs& args) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string labs_root;
+    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
+    const fs::path root = args.root;
+    const fs::path upload = root / "submission";
+    const fs::path results = root / "results";
+    std::error_code ec;
+    fs::create_directories(results, ec);
+    const std::vector<std::string> all_ids = listLabIds(labs_root);
+    GradeOptions options;
+    options.labs_root = labs_root;
+    options.labs = args.common.labs.empty() ? all_ids : args.common.labs;
+    options.reference_root = args.reference_root;
+    options.limits.timeout_s = args.timeout_s;
+    parseBackend(args.common.backend, &options.backend);
+
+    char tmpl[] = "/tmp/shaderlab-gradescope-XXXXXX";
+    if (!mkdtemp(tmpl)) {
+        std::cerr << "shaderlab: cannot make a temporary folder\n";
+        return 2;
+    }
+    const fs::path work = tmpl;
+    options.out_dir = (work / "out").string();
+    fs::create_directories(options.out_dir, ec);
+    // The upload mirrors labs/ (perhaps inside a folder), or, for one lab, holds its files anywhere.
+    std::string submission = batch::unwrapSubmissionRoot(upload.string(), all_ids);
+    bool mirrors = false;
+    for (const std::string& id : options.labs)
+        mirrors = mirrors || fs::is_directory(fs::path(submission) / id, ec);
+    if (!mirrors && options.labs.size() == 1) {
+        const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / options.labs[0]).string());
+        if (parsed.ok && stageFlatUpload(upload, parsed.spec, work / "staged"))
+            submission = (work / "staged").string();
+    }
+    grader::Report report = gradeSubmission(submission, options);
+    report.tool_version = SHADERLAB_VERSION;
+
+    json out = json::parse(grader::reportToGradescope(report, {options.out_dir, 2u << 20}), nullptr, false);
+    if (args.tests == "scenes") {
+        // One test per scene instead of per goal: the goal's points shared among its scenes.
+        // (Goals' outputs are written by grader::reportToGradescope; these are simpler.)
+        json tests = json::array();
+        for (const json& t : out["tests"])
+            if (t.value("output_format", "") == "text") tests.push_back(t);  // a lab that did not render
+        std::size_t budget = 2u << 20;  // of embedded pictures in all, as for the goals' tests
+        for (const grader::ReportLab& lab : report.labs) {
+            for (const grader::ReportScene& s : lab.scenes) {
+                std::string html = "<p>" + escapeHtml(s.status == "passed" ? "passed" : s.message) + "</p>\n";
+                if (!s.hint.mistake.empty())
+                    html += "<p>This looks like a known mistake: " + escapeHtml(s.hint.about) + "</p>\n";
+                // A failing scene shows the student's picture beside the reference's and the difference.
+                if (s.status != "passed") {
+                    std::string pictures;
+                    for (const auto& [label, file] :
+                         {std::pair<std::string, std::string>{"yours", s.student_image},
+                          {"reference", s.reference_image},
+                          {"difference (FLIP)", s.diff_image}}) {
+                        const std::string uri = pngDataUri(fs::path(options.out_dir) / file, &budget);
+                        if (!file.empty() && !uri.empty())
+                            pictures += "<figure><img src=\"" + uri + "\" alt=\"" + label +
+                                        "\" width=\"160\"><figcaption>" + label + "</figcaption></figure>\n";
+                    }
+                    html += pictures;
+                }
+                tests.push_back({{"name", lab.id + " / " + s.name},
+                                 {"score", s.score},
+                                 {"max_score", s.max_score},
+                                 {"status", s.status == "passed" ? "passed" : "failed"},
+                                 {"output", html},
+                                 {"output_format", "html"}});
+            }
+        }
+        out["tests"] = tests;
+    }
+    out["visibility"] = args.visibility;
+    out["stdout_visibility"] = "hidden";
+    for (json& t : out["tests"]) t["visibility"] = args.visibility;
+    out["execution_time"] =
+        static_cast<int>(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() + 0.5);
+    std::string error;
+    const bool ok =
+        batch::writeFileAtomically((results / "results.json").string(),
+                                   out.dump(2, ' ', false, json::error_handler_t::replace) + "\n", &error);
+    fs::remove_all(work, ec);
+    if (!ok) {
+        std::cerr << "shaderlab: " << error << "\n";
+        return 2;
+    }
+    std::printf("score %.2f / %.2f\n", report.score, report.max_score);
+    return 0;
+}
+
+}  // namespace shaderlab::cli

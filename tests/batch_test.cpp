@@ -1,0 +1,615 @@
+// `shaderlab batch` and `merge`, and their building blocks (shaderlab/batch.h): submitted zips
+// unpacked safely or refused with one clear status, summaries, resuming after SIGKILL with no
+// process left behind, identical work graded once, shards merged into the same summary.
+// The batches grade 01-phong only, so that every test here stays within a few seconds of work.
+#include "shaderlab/batch.h"
+
+#include <archive.h>
+#include <archive_entry.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using namespace shaderlab;
+
+namespace {
+
+const fs::path kSource = SHADERLAB_SOURCE_DIR;
+const std::string kLab = "01-phong";
+
+fs::path scratch(const std::string& name) {
+    const fs::path p =
+        fs::temp_directory_path() / ("shaderlab_batch_" + name + "_" + std::to_string(getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void writeFile(const fs::path& p, const std::string& text) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << text;
+}
+
+struct ZipEntry {
+    std::string name;
+    std::string data;
+    unsigned type{AE_IFREG};
+    std::string link{};  // symlink target
+};
+
+// Writes a zip with libarchive, any entry name allowed (the point is to write hostile ones).
+void writeZip(const fs::path& path, const std::vector<ZipEntry>& entries) {
+    archive* a = archive_write_new();
+    archive_write_set_format_zip(a);
+    ASSERT_EQ(archive_write_open_filename(a, path.c_str()), ARCHIVE_OK);
+    for (const ZipEntry& e : entries) {
+        archive_entry* entry = archive_entry_new();
+        archive_entry_set_pathname_utf8(entry, e.name.c_str());
+        archive_entry_set_filetype(entry, e.type);
+        archive_entry_set_perm(entry, 0644);
+        if (e.type == AE_IFLNK) archive_entry_set_symlink(entry, e.link.c_str());
+        archive_entry_set_size(entry, e.type == AE_IFREG ? static_cast<la_int64_t>(e.data.size()) : 0);
+        archive_write_header(a, entry);
+        if (e.type == AE_IFREG && !e.data.empty()) archive_write_data(a, e.data.data(), e.data.size());
+        archive_entry_free(entry);
+    }
+    archive_write_close(a);
+    archive_write_free(a);
+}
+
+// A zip of one empty entry whose Unix mode (in the central directory's external attributes) is
+// `mode`: how a device file or a FIFO travels in a zip (APPNOTE.TXT 4.3.7, 4.3.12, 4.4.15).
+std::string zipWithUnixMode(const std::string& name, std::uint32_t mode) {
+    std::string z;
+    auto u16 = [&](unsigned v) {
+        z += static_cast<char>(v & 0xFF);
+        z += static_cast<char>((v >> 8) & 0xFF);
+    };
+    auto u32 = [&](std::uint32_t v) {
+        u16(v & 0xFFFF);
+        u16(v >> 16);
+    };
+    u32(0x04034b50);  // local file header: stored, empty (CRC 0), dated 1980-01-01
+    for (unsigned v : {10u, 0u, 0u, 0u, 0x21u}) u16(v);
+    for (int i = 0; i < 3; ++i) u32(0);
+    u16(static_cast<unsigned>(name.size()));
+    u16(0);
+    z += name;
+    const std::uint32_t central = static_cast<std::uint32_t>(z.size());
+    u32(0x02014b50);  // central directory header, made by Unix (3)
+    for (unsigned v : {0x0314u, 10u, 0u, 0u, 0u, 0x21u}) u16(v);
+    for (int i = 0; i < 3; ++i) u32(0);
+    u16(static_cast<unsigned>(name.size()));
+    for (int i = 0; i < 4; ++i) u16(0);
+    u32(mode << 16);
+    u32(0);
+    z += name;
+    const std::uint32_t size = static_cast<std::uint32_t>(z.size()) - central;
+    u32(0x06054b50);  // end of central directory
+    for (unsigned v : {0u, 0u, 1u, 1u}) u16(v);
+    u32(size);
+    u32(central);
+    u16(0);
+    return z;
+}
+
+// The reference solution's files of a lab, as zip entries under `prefix`.
+std::vector<ZipEntry> referenceEntries(const std::string& prefix, const std::string& extra = "") {
+    std::vector<ZipEntry> out;
+    for (const fs::directory_entry& e : fs::directory_iterator(kSource / "reference_solutions" / kLab))
+        out.push_back({prefix + kLab + "/" + e.path().filename().string(), readFile(e.path()) + extra});
+    return out;
+}
+
+void copyReference(const fs::path& into, const std::string& extra = "") {
+    fs::create_directories(into / kLab);
+    for (const fs::directory_entry& e : fs::directory_iterator(kSource / "reference_solutions" / kLab))
+        writeFile(into / kLab / e.path().filename(), readFile(e.path()) + extra);
+}
+
+struct CliRun {
+    int exit_code = -1;
+    std::string output;
+};
+
+CliRun runCli(const std::string& args, const std::string& env = "") {
+    CliRun r;
+    const std::string cmd = env + " " + std::string(SHADERLAB_CLI) + " " + args + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
+    const int status = pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string batchArgs(const fs::path& subs, const fs::path& out, const std::string& more = "") {
+    return "batch '" + subs.string() + "' --out '" + out.string() + "' --lab " + kLab + " --timeout 20 " +
+           more;
+}
+
+json summaryOf(const fs::path& out) { return json::parse(readFile(out / "summary.json"), nullptr, false); }
+
+const json* rowOf(const json& summary, const std::string& student) {
+    for (const json& r : summary["submissions"])
+        if (r["student"] == student) return &r;
+    return nullptr;
+}
+
+// Processes whose environment holds `marker`: everything a batch started, wherever it was reparented.
+std::vector<int> processesMarked(const std::string& marker) {
+    std::vector<int> pids;
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator("/proc", ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+        const std::string env = readFile(e.path() / "environ");
+        if (env.find(marker) != std::string::npos) pids.push_back(std::stoi(name));
+    }
+    return pids;
+}
+
+// ---- archives -----------------------------------------------------------------------------------
+
+TEST(BatchArchive, UnpacksNestedFoldersWithNamesKept) {
+    const fs::path dir = scratch("unpack");
+    std::vector<ZipEntry> entries = referenceEntries("Zoë Ångström - 12 May/submission/");
+    entries.push_back({"Zoë Ångström - 12 May/submission/notes à lire.txt", "hello"});
+    entries.push_back({"__MACOSX/._x", "resource fork"});
+    entries.push_back(
+        {"Zoë Ångström - 12 May/submission/" + kLab + "/same.frag", "", AE_IFLNK, "phong.frag"});
+    writeZip(dir / "in.zip", entries);
+    const batch::ExtractResult x = batch::extractZip((dir / "in.zip").string(), (dir / "out").string());
+    ASSERT_EQ(x.status, "ok") << x.message;
+    EXPECT_EQ(x.files, entries.size());
+    const std::string root = batch::unwrapSubmissionRoot((dir / "out").string(), {kLab});
+    EXPECT_EQ(fs::path(root), dir / "out" / "Zoë Ångström - 12 May" / "submission");
+    EXPECT_TRUE(fs::is_regular_file(fs::path(root) / "notes à lire.txt"));
+    EXPECT_EQ(readFile(fs::path(root) / kLab / "phong.frag"),
+              readFile(kSource / "reference_solutions" / kLab / "phong.frag"));
+    EXPECT_TRUE(fs::is_symlink(fs::path(root) / kLab / "same.frag"));  // a link inside is kept
+}
+
+TEST(BatchArchive, RefusesEntriesThatLeaveTheFolder) {
+    const fs::path dir = scratch("slip");
+    struct Case {
+        std::vector<ZipEntry> entries;
+        std::string status, words;
+    };
+    const std::vector<Case> cases = {
+        {{{"ok.txt", "x"}, {"../../escaped.txt", "zip-slip"}}, "unsafe_archive", "'..'"},
+        {{{"/tmp/escaped.txt", "absolute"}}, "unsafe_archive", "absolute path"},
+        {{{"a/..\\..\\escaped.txt", "windows"}}, "unsafe_archive", "'..'"},
+        {{{"a/link", "", AE_IFLNK, "/etc/passwd"}}, "unsafe_archive", "outside the submission"},
+        {{{"a/link", "", AE_IFLNK, "../../etc/passwd"}}, "unsafe_archive", "outside the submission"},
+        {{{"a.txt", "1"}, {"a.txt", "2"}}, "unsafe_archive", "appears twice"},
+    };
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const fs::path zip = dir / ("case" + std::to_string(i) + ".zip");
+        writeZip(zip, cases[i].entries);
+        fs::create_directories(dir / ("out" + std::to_string(i)));
+        const batch::ExtractResult x =
+            batch::extractZip(zip.string(), (dir / ("out" + std::to_string(i)) / "x").string());
+        EXPECT_EQ(x.status, cases[i].status) << i << ": " << x.message;
+        EXPECT_NE(x.message.find(cases[i].words), std::string::npos) << i << ": " << x.message;
+    }
+    EXPECT_FALSE(fs::exists(dir / "escaped.txt"));
+    EXPECT_FALSE(fs::exists(fs::temp_directory_path() / "escaped.txt"));
+    // Device files are refused; a FIFO's mode (which libarchive reads as a plain file) and a plain
+    // file's give a plain file: nothing but files, folders and checked symlinks is ever made.
+    const std::vector<std::pair<std::uint32_t, std::string>> modes = {
+        {0020644, "unsafe_archive"}, {0060644, "unsafe_archive"}, {0010644, ""}, {0100644, "ok"}};
+    for (std::size_t i = 0; i < modes.size(); ++i) {
+        const fs::path zip = dir / ("mode" + std::to_string(i) + ".zip");
+        writeFile(zip, zipWithUnixMode("lab/dev", modes[i].first));
+        const fs::path into = dir / ("m" + std::to_string(i));
+        const batch::ExtractResult x = batch::extractZip(zip.string(), into.string());
+        if (!modes[i].second.empty()) {
+            EXPECT_EQ(x.status, modes[i].second) << std::oct << modes[i].first;
+        }
+        if (x.status == "ok") {
+            EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(into / "lab" / "dev")))
+                << std::oct << modes[i].first;
+        } else {
+            EXPECT_NE(x.message.find("not a file, a folder or a symlink"), std::string::npos) << x.message;
+        }
+    }
+}
+
+TEST(BatchArchive, StopsZipBombsAndNamesBrokenZips) {
+    const fs::path dir = scratch("bomb");
+    writeZip(dir / "bomb.zip", {{"zeros.bin", std::string(40u << 20, '\0')}});
+    ASSERT_LT(fs::file_size(dir / "bomb.zip"), 1u << 20);
+    batch::ExtractResult x = batch::extractZip((dir / "bomb.zip").string(), (dir / "o1").string());
+    EXPECT_EQ(x.status, "too_large") << x.message;
+    EXPECT_LE(x.bytes, 17u << 20);  // stopped as the data came, not after
+    // Within the absolute limits, the ratio alone stops it.
+    batch::ArchiveLimits lax;
+    lax.max_entry_bytes = lax.max_total_bytes = 1u << 30;
+    x = batch::extractZip((dir / "bomb.zip").string(), (dir / "o2").string(), lax);
+    EXPECT_EQ(x.status, "too_large");
+    EXPECT_NE(x.message.find("zip bomb"), std::string::npos) << x.message;
+
+    writeFile(dir / "garbage.zip",
+              std::string("PK\x03\x04 not really a zip at all", 30) + std::string(200, 'x'));
+    x = batch::extractZip((dir / "garbage.zip").string(), (dir / "o3").string());
+    EXPECT_EQ(x.status, "bad_archive") << x.message;
+    writeFile(dir / "short.zip", "PK");
+    x = batch::extractZip((dir / "short.zip").string(), (dir / "o4").string());
+    EXPECT_EQ(x.status, "bad_archive") << x.message;
+    // Empty zips unpack to nothing; the batch then says "empty".
+    writeFile(dir / "zero.zip", "");
+    EXPECT_EQ(batch::extractZip((dir / "zero.zip").string(), (dir / "o5").string()).status, "ok");
+    writeZip(dir / "none.zip", {});
+    x = batch::extractZip((dir / "none.zip").string(), (dir / "o6").string());
+    EXPECT_EQ(x.status, "ok") << x.message;
+    EXPECT_EQ(x.files, 0u);
+}
+
+// ---- small pieces -------------------------------------------------------------------------------
+
+TEST(BatchSummary, CsvQuotesFieldsAndDefusesFormulas) {
+    batch::Summary s;
+    s.labs = {kLab};
+    batch::SummaryRow r;
+    r.student = "=HYPERLINK(\"x\")";
+    r.status = "graded";
+    r.message = "line one, \"two\"\nthree";
+    r.total = 7.5;
+    r.max_total = 10;
+    r.labs = {{kLab, 7.5, 10, "failed"}};
+    s.rows.push_back(r);
+    const std::string csv = batch::summaryToCsv(s);
+    EXPECT_NE(csv.find("student,status,total,max_total,01-phong,01-phong status,message\r\n"),
+              std::string::npos);
+    EXPECT_NE(
+        csv.find("\"'=HYPERLINK(\"\"x\"\")\",graded,7.50,10.00,7.50,failed,\"line one, \"\"two\"\"\nthree\""),
+        std::string::npos)
+        << csv;
+    batch::Summary back;
+    std::string err;
+    ASSERT_TRUE(batch::summaryFromJson(batch::summaryToJson(s), &back, &err)) << err;
+    ASSERT_EQ(back.rows.size(), 1u);
+    EXPECT_EQ(back.rows[0].student, r.student);
+    EXPECT_EQ(back.rows[0].labs[0].status, "failed");
+    EXPECT_DOUBLE_EQ(back.rows[0].total, 7.5);
+}
+
+TEST(BatchFiles, PrintableEscapesControlsAndBadUtf8) {
+    EXPECT_EQ(batch::printable("Zoë\033[31m red\xff"), "Zoë\\x1B[31m red\\xFF");
+    EXPECT_EQ(batch::printable(std::string(50, 'a'), 10), std::string(10, 'a') + "...");
+}
+
+TEST(BatchFiles, AtomicWriteReplacesASymlinkInsteadOfFollowingIt) {
+    const fs::path dir = scratch("atomic");
+    writeFile(dir / "victim.txt", "keep me");
+    fs::create_symlink(dir / "victim.txt", dir / "report.json");
+    std::string err;
+    ASSERT_TRUE(batch::writeFileAtomically((dir / "report.json").string(), "{}", &err)) << err;
+    EXPECT_EQ(readFile(dir / "victim.txt"), "keep me");
+    EXPECT_FALSE(fs::is_symlink(dir / "report.json"));
+    EXPECT_EQ(readFile(dir / "report.json"), "{}");
+    EXPECT_FALSE(batch::writeFileAtomically((dir / "no" / "such" / "x").string(), "{}", &err));
+    EXPECT_NE(err.find("No such file"), std::string::npos) << err;
+}
+
+TEST(BatchFiles, TreeHashSeesContentNotTimes) {
+    const fs::path dir = scratch("hash");
+    copyReference(dir / "a");
+    copyReference(dir / "b");
+    auto hashOf = [](const fs::path& p) {
+        batch::Hasher h;
+        EXPECT_TRUE(h.addTree(p.string(), p.string()));
+        return h.hex();
+    };
+    EXPECT_EQ(hashOf(dir / "a"), hashOf(dir / "b"));
+    writeFile(dir / "b" / kLab / "phong.frag", readFile(dir / "b" / kLab / "phong.frag") + " ");
+    EXPECT_NE(hashOf(dir / "a"), hashOf(dir / "b"));
+    fs::create_symlink("/etc/passwd", dir / "a" / "stolen");  // hashed as its target's name only
+    EXPECT_NE(hashOf(dir / "a"), hashOf(dir / "b"));
+}
+
+// ---- the command --------------------------------------------------------------------------------
+
+TEST(BatchCli, RefusesAnUnwritableOrBusyResultsFolderBeforeAnyWork) {
+    const fs::path dir = scratch("refuse");
+    copyReference(dir / "subs" / "alice");
+    writeFile(dir / "file", "not a folder");
+    CliRun r = runCli(batchArgs(dir / "subs", dir / "file" / "out"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("cannot write the results"), std::string::npos) << r.output;
+    fs::create_directories(dir / "out" / ".shaderlab");
+    batch::FolderLock held;
+    std::string err;
+    ASSERT_TRUE(held.acquire((dir / "out" / ".shaderlab" / "lock").string(), &err)) << err;
+    r = runCli(batchArgs(dir / "subs", dir / "out"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("another batch is writing into this folder"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out" / "alice"));
+    r = runCli(batchArgs(dir / "subs", dir / "out2", "--shard 3/2"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+}
+
+// Folders and zips, well-formed and hostile, in one batch: each gets its status, a report, and a
+// row in the summary; identical lab folders are graded once; Mesa writes nothing into $HOME; a
+// second run skips every unchanged submission.
+TEST(BatchCli, MixedSubmissionsEachGetOneClearStatus) {
+    const fs::path dir = scratch("mixed");
+    // The results go inside the submissions folder: they are not taken for a submission.
+    const fs::path subs = dir / "subs", out = subs / "results", home = dir / "home";
+    fs::create_directories(home);
+    copyReference(subs / "alice");
+    copyReference(subs / "dave");  // the same work as alice's
+    for (const char* f : {"phong.vert", "phong.frag"})
+        writeFile(subs / "bob" / kLab / f, readFile(kSource / "labs" / kLab / f));  // the starter
+    writeZip(subs / "Zoë Ångström.zip", referenceEntries("Zoë Ångström/Assignment 1/"));
+    writeZip(subs / "mallory.zip", {{"../../escaped.txt", "zip-slip"}});
+    writeZip(subs / "bomb.zip", {{"zeros.bin", std::string(40u << 20, '\0')}});
+    writeZip(subs / "hollow.zip", {});
+    writeFile(subs / "nothing.zip", "");
+    writeFile(subs / "garbage.zip", std::string(300, '\x07'));
+    writeFile(subs / "stray.txt", "not a submission");
+    // A lab folder that is a symlink to the root of the file system, and a symlink loop.
+    fs::create_directories(subs / "eve");
+    fs::create_directory_symlink("/", subs / "eve" / kLab);
+    fs::create_directory_symlink(".", subs / "eve" / "loop");
+    const std::string env = "HOME='" + home.string() + "' XDG_CACHE_HOME='" + home.string() + "/.cache'";
+    CliRun r = runCli(batchArgs(subs, out), env + " env -u MESA_SHADER_CACHE_DISABLE");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const json summary = summaryOf(out);
+    ASSERT_TRUE(summary.is_object()) << r.output;
+    EXPECT_EQ(summary["submissions"].size(), 10u) << summary.dump(1);
+    // Not a terminal: one plain line per submission, no bar, no escapes.
+    EXPECT_NE(r.output.find("/10] alice: graded 10.00 / 10.00\n"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("\033["), std::string::npos) << r.output;
+    const std::map<std::string, std::pair<std::string, std::string>> expected = {
+        {"alice", {"graded", "passed"}},     {"dave", {"graded", "passed"}},
+        {"bob", {"graded", "failed"}},       {"Zoë Ångström", {"graded", "passed"}},
+        {"mallory", {"unsafe_archive", ""}}, {"bomb", {"too_large", ""}},
+        {"hollow", {"empty", ""}},           {"nothing", {"empty", ""}},
+        {"garbage", {"bad_archive", ""}},    {"eve", {"graded", "missing"}},
+    };
+    for (const auto& [student, want] : expected) {
+        const json* row = rowOf(summary, student);
+        ASSERT_NE(row, nullptr) << student;
+        EXPECT_EQ((*row)["status"], want.first) << student << ": " << row->dump();
+        EXPECT_EQ((*row)["labs"][kLab]["status"], want.second) << student << ": " << row->dump();
+        // Every submission has its report, graded or not.
+        const json report = json::parse(readFile(out / student / "report.json"), nullptr, false);
+        ASSERT_TRUE(report.is_object()) << student;
+        EXPECT_TRUE(fs::is_regular_file(out / student / "report.html")) << student;
+        if (want.first != "graded") {
+            EXPECT_FALSE((*row)["message"].get<std::string>().empty()) << student;
+            EXPECT_EQ(report["labs"][0]["status"], "missing") << student;
+        }
+    }
+    EXPECT_DOUBLE_EQ((*rowOf(summary, "alice"))["total"].get<double>(),
+                     (*rowOf(summary, "alice"))["max_total"].get<double>());
+    // The images are in each report folder, and each report names its own folder.
+    EXPECT_TRUE(fs::is_regular_file(out / "dave" / kLab / "sphere" / "student.png"));
+    const json dave = json::parse(readFile(out / "dave" / "report.json"));
+    EXPECT_NE(dave["labs"][0]["folder"].get<std::string>().find("/dave/"), std::string::npos) << dave.dump();
+    // alice, dave and Zoë submitted the same files, bob the starter, eve her symlink: three gradings.
+    std::size_t graded = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(out / ".shaderlab" / "labs" / kLab))
+        graded += e.is_directory() ? 1 : 0;
+    EXPECT_EQ(graded, 3u);
+    EXPECT_FALSE(fs::exists(dir / "escaped.txt"));
+    EXPECT_FALSE(fs::exists(home / ".cache")) << "something wrote a cache into $HOME";
+    // Unchanged: nothing graded again. One changed submission: only it.
+    r = runCli(batchArgs(subs, out));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("(0 graded, 10 unchanged since their report), 0 worker runs"), std::string::npos)
+        << r.output;
+    for (const char* f : {"phong.vert", "phong.frag"})
+        writeFile(subs / "bob" / kLab / f, readFile(kSource / "reference_solutions" / kLab / f));
+    r = runCli(batchArgs(subs, out));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("(1 graded, 9 unchanged since their report), 0 worker runs"), std::string::npos)
+        << r.output;  // bob's lab folder is now alice's: its grading is reused
+    EXPECT_EQ((*rowOf(summaryOf(out), "bob"))["labs"][kLab]["status"], "passed");
+}
+
+// A worker that dies (here: an address-space limit too small for the program to start) costs its
+// lab a "crashed" with the reason and the worker's log, exit code 1; the next run grades it.
+TEST(BatchCli, AWorkerThatDiesIsNamedAndRetried) {
+    const fs::path dir = scratch("worker_dies");
+    copyReference(dir / "subs" / "alice");
+    CliRun r = runCli(batchArgs(dir / "subs", dir / "out", "--memory 64M --no-reference"));
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    const json report = json::parse(readFile(dir / "out" / "alice" / "report.json"), nullptr, false);
+    ASSERT_TRUE(report.is_object()) << r.output;
+    EXPECT_EQ(report["labs"][0]["status"], "crashed");
+    const std::string message = report["labs"][0]["message"];
+    EXPECT_NE(message.find("the grading process stopped"), std::string::npos) << message;
+    EXPECT_NE(message.find("log: " + (dir / "out" / ".shaderlab" / "logs").string()), std::string::npos)
+        << message;
+    EXPECT_FALSE(fs::exists(dir / "out" / "alice" / "batch.json"));
+    // Symlinks planted in the results folder are replaced, never written through.
+    writeFile(dir / "victim" / "keep.txt", "keep");
+    fs::remove_all(dir / "out" / "alice");
+    fs::create_directory_symlink(dir / "victim", dir / "out" / "alice");
+    fs::remove(dir / "out" / "summary.csv");
+    fs::create_symlink(dir / "victim" / "keep.txt", dir / "out" / "summary.csv");
+    r = runCli(batchArgs(dir / "subs", dir / "out", "--no-reference"));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("(1 graded, 0 unchanged"), std::string::npos) << r.output;
+    EXPECT_EQ((*rowOf(summaryOf(dir / "out"), "alice"))["labs"][kLab]["status"], "passed");
+    EXPECT_EQ(readFile(dir / "victim" / "keep.txt"), "keep");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "victim"), fs::directory_iterator()), 1);
+    EXPECT_FALSE(fs::is_symlink(dir / "out" / "alice"));
+    EXPECT_FALSE(fs::is_symlink(dir / "out" / "summary.csv"));
+    // The batch's own folder planted as a symlink: refused before any work.
+    fs::remove_all(dir / "out" / ".shaderlab");
+    fs::create_directory_symlink(dir / "victim", dir / "out" / ".shaderlab");
+    r = runCli(batchArgs(dir / "subs", dir / "out", "--no-reference"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("is a symlink"), std::string::npos) << r.output;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir / "victim"), fs::directory_iterator()), 1);
+}
+
+// A batch killed with SIGKILL half-way leaves no process; run again it finishes what was missing
+// and ends with the summary of a run never interrupted. Two shards merged give it too.
+TEST(BatchCli, InterruptedResumedAndShardedRunsAgree) {
+    const fs::path dir = scratch("resume");
+    const fs::path subs = dir / "subs", cache = dir / "cache";
+    // Distinct work (a comment each), so that every submission is a grading of its own.
+    for (int i = 0; i < 6; ++i)
+        copyReference(subs / ("s" + std::to_string(i)), "\n// " + std::to_string(i) + "\n");
+    for (const char* f : {"phong.vert", "phong.frag"})
+        writeFile(subs / "starter" / kLab / f, readFile(kSource / "labs" / kLab / f));
+    const std::string common = "--jobs 2 --cache '" + cache.string() + "'";
+
+    const CliRun whole = runCli(batchArgs(subs, dir / "whole", common));
+    ASSERT_EQ(whole.exit_code, 0) << whole.output;
+    const std::string expected = readFile(dir / "whole" / "summary.json");
+
+    const std::string marker = "SHADERLAB_BATCH_TEST_" + std::to_string(getpid());
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        setenv(marker.c_str(), "1", 1);
+        const std::string out = (dir / "killed").string();
+        std::freopen("/dev/null", "w", stdout);
+        execl(SHADERLAB_CLI, SHADERLAB_CLI, "batch", subs.c_str(), "--out", out.c_str(), "--lab",
+              kLab.c_str(), "--timeout", "20", "--jobs", "2", "--cache", cache.c_str(),
+              static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    // Kill it once the first report is there (and before the last).
+    bool some = false;
+    for (int i = 0; i < 1500 && !some; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        std::error_code ec;
+        for (const fs::directory_entry& e : fs::directory_iterator(dir / "killed", ec))
+            some = some || fs::exists(e.path() / "batch.json");
+    }
+    ASSERT_TRUE(some);
+    EXPECT_GT(processesMarked(marker).size(), 1u) << "the batch should have workers running";
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    EXPECT_FALSE(fs::exists(dir / "killed" / "summary.json")) << "the batch finished before it was killed";
+    std::vector<int> left = processesMarked(marker);
+    for (int i = 0; i < 100 && !left.empty(); ++i) {  // PR_SET_PDEATHSIG is prompt, not instant
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        left = processesMarked(marker);
+    }
+    EXPECT_TRUE(left.empty()) << left.size() << " processes of the killed batch are still running";
+
+    const CliRun resumed = runCli(batchArgs(subs, dir / "killed", common));
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_EQ(resumed.output.find("(7 graded"), std::string::npos)
+        << "everything graded again: " << resumed.output;
+    EXPECT_EQ(readFile(dir / "killed" / "summary.json"), expected);
+
+    for (int k = 1; k <= 2; ++k) {
+        const CliRun shard = runCli(batchArgs(subs, dir / ("shard" + std::to_string(k)),
+                                              common + " --shard " + std::to_string(k) + "/2"));
+        ASSERT_EQ(shard.exit_code, 0) << shard.output;
+    }
+    const CliRun merged = runCli("merge '" + (dir / "shard1").string() + "' '" + (dir / "shard2").string() +
+                                 "' --out '" + (dir / "merged").string() + "'");
+    ASSERT_EQ(merged.exit_code, 0) << merged.output;
+    EXPECT_EQ(readFile(dir / "merged" / "summary.json"), expected);
+    EXPECT_EQ(readFile(dir / "merged" / "summary.csv"), readFile(dir / "whole" / "summary.csv"));
+    EXPECT_TRUE(fs::is_regular_file(dir / "merged" / "s3" / "report.html"));
+    // A student in two shards is an error, not a silent pick.
+    const CliRun twice = runCli("merge '" + (dir / "shard1").string() + "' '" + (dir / "whole").string() +
+                                "' --out '" + (dir / "merged2").string() + "'");
+    EXPECT_EQ(twice.exit_code, 2) << twice.output;
+}
+
+}  // namespace
+
+namespace {
+
+// The Gradescope bundle, unpacked into a simulated /autograder: its run_autograder grades an
+// upload (flat files, in a folder, as students upload a one-lab assignment) into
+// results/results.json per Gradescope's specification, with the chosen visibility and tests.
+TEST(GradescopeBundle, RunAutograderWritesResultsInASimulatedLayout) {
+    const fs::path dir = scratch("gradescope");
+    const fs::path zip = dir / "autograder.zip";
+    CliRun r = runCli("gradescope-bundle --out '" + zip.string() + "' --lab " + kLab +
+                      " --visibility after_published --tests scenes --timeout 20");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const fs::path root = dir / "autograder";
+    fs::create_directories(root);
+    const batch::ExtractResult x = batch::extractZip(zip.string(), (root / "source").string());
+    ASSERT_EQ(x.status, "ok") << x.message;
+    for (const char* script : {"setup.sh", "run_autograder"}) {
+        const fs::path p = root / "source" / script;
+        ASSERT_TRUE(fs::is_regular_file(p)) << script;
+        EXPECT_NE(fs::status(p).permissions() & fs::perms::owner_exec, fs::perms::none) << script;
+        EXPECT_EQ(runCli("", "bash -n '" + p.string() + "' #").exit_code, 0) << script;
+    }
+    // Only the chosen lab, with its reference solution and the shared scenes.
+    EXPECT_TRUE(fs::is_regular_file(root / "source" / "labs" / kLab / "lab.json"));
+    EXPECT_TRUE(fs::is_directory(root / "source" / "labs" / "scenes"));
+    EXPECT_FALSE(fs::exists(root / "source" / "labs" / "02-toon"));
+    EXPECT_TRUE(fs::is_regular_file(root / "source" / "reference_solutions" / kLab / "phong.frag"));
+
+    auto grade = [&](const std::string& from) {
+        fs::remove_all(root / "submission");
+        fs::remove_all(root / "results");
+        for (const char* f : {"phong.vert", "phong.frag"})
+            writeFile(root / "submission" / "my upload" / f, readFile(fs::path(from) / f));
+        const CliRun run =
+            runCli("", "SHADERLAB_AUTOGRADER_ROOT='" + root.string() + "' SHADERLAB_BIN='" + SHADERLAB_CLI +
+                           "' bash '" + (root / "source" / "run_autograder").string() + "' #");
+        EXPECT_EQ(run.exit_code, 0) << run.output;
+        return json::parse(readFile(root / "results" / "results.json"), nullptr, false);
+    };
+    const json good = grade((kSource / "reference_solutions" / kLab).string());
+    ASSERT_TRUE(good.is_object());
+    EXPECT_DOUBLE_EQ(good["score"].get<double>(), 10.0);
+    EXPECT_EQ(good["visibility"], "after_published");
+    EXPECT_TRUE(good["execution_time"].is_number());
+    ASSERT_GT(good["tests"].size(), 8u);  // one per scene, more than the lab's goals
+    double sum = 0;
+    for (const json& t : good["tests"]) {
+        EXPECT_EQ(t["visibility"], "after_published");
+        EXPECT_EQ(t["status"], "passed") << t.dump();
+        EXPECT_EQ(t["name"].get<std::string>().rfind(kLab + " / ", 0), 0u);
+        sum += t["max_score"].get<double>();
+    }
+    EXPECT_NEAR(sum, 10.0, 1e-9);
+    const json starter = grade((kSource / "labs" / kLab).string());
+    EXPECT_LT(starter["score"].get<double>(), 10.0);
+    bool failed = false;
+    for (const json& t : starter["tests"]) {
+        if (t["status"] != "failed") continue;
+        failed = true;
+        // A failing scene shows the pictures: the student's, the reference's, the difference.
+        EXPECT_EQ(t["output_format"], "html");
+        EXPECT_NE(t["output"].get<std::string>().find("<img src=\"data:image/png;base64,iVBORw0KGgo"),
+                  std::string::npos)
+            << t["output"];
+    }
+    EXPECT_TRUE(failed);
+    // The bundle's sources configure on their own: CMake finds every file it names.
+    const CliRun configure = runCli(
+        "", "cmake -S '" + (root / "source").string() + "' -B '" + (dir / "build").string() +
+                "' -DSHADERLAB_BUILD_TESTS=OFF -DSHADERLAB_BUILD_BENCH=OFF >/dev/null && echo configured #");
+    EXPECT_NE(configure.output.find("configured"), std::string::npos) << configure.output;
+}
+
+}  // namespace
