@@ -428,12 +428,13 @@ TEST(BatchCli, MixedSubmissionsEachGetOneClearStatus) {
     EXPECT_EQ((*rowOf(summaryOf(out), "bob"))["labs"][kLab]["status"], "passed");
 }
 
-// A worker that dies (here: an address-space limit too small for the program to start) costs its
+// A worker that dies (here: an address-space cap too small for the program to start) costs its
 // lab a "crashed" with the reason and the worker's log, exit code 1; the next run grades it.
 TEST(BatchCli, AWorkerThatDiesIsNamedAndRetried) {
     const fs::path dir = scratch("worker_dies");
     copyReference(dir / "subs" / "alice");
-    CliRun r = runCli(batchArgs(dir / "subs", dir / "out", "--memory 64M --no-reference"));
+    CliRun r =
+        runCli(batchArgs(dir / "subs", dir / "out", "--no-reference"), "SHADERLAB_WORKER_ADDRESS_SPACE=16M");
     EXPECT_EQ(r.exit_code, 1) << r.output;
     const json report = json::parse(readFile(dir / "out" / "alice" / "report.json"), nullptr, false);
     ASSERT_TRUE(report.is_object()) << r.output;

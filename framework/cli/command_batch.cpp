@@ -63,7 +63,7 @@ std::string readText(const fs::path& p, std::size_t max_bytes = 64u << 20) {
     return s;
 }
 
-bool parseMemory(const std::string& text, std::size_t* bytes) {
+bool parseMemory(const std::string& text, std::size_t* bytes, std::size_t minimum = std::size_t(64) << 20) {
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (!end || end == text.c_str() || !(v > 0)) return false;
@@ -78,7 +78,7 @@ bool parseMemory(const std::string& text, std::size_t* bytes) {
     else
         return false;
     *bytes = static_cast<std::size_t>(v * scale);
-    return *bytes >= (std::size_t(64) << 20);
+    return *bytes >= minimum;
 }
 
 std::string defaultReferenceRootOf(const std::string& labs_root) {
@@ -567,8 +567,9 @@ int runBatch(const BatchArgs& args) {
                           : (args.reference_root.empty() ? defaultReferenceRootOf(labs_root)
                                                          : fs::absolute(args.reference_root, ec).string());
     const int jobs_max = std::max(1, std::min(kMaxWorkers, args.jobs > 0 ? args.jobs : usableCores()));
-    char timeout_text[32];
+    char timeout_text[32], compile_timeout_text[32];
     std::snprintf(timeout_text, sizeof timeout_text, "%g", args.timeout_s);
+    std::snprintf(compile_timeout_text, sizeof compile_timeout_text, "%g", args.compile_timeout_s);
 
     // Keys. A lab's: the program, the driver, the lab folder (lab.json, scenes, hints, goldens),
     // the shared folders beside the labs, its reference solution, and the limits.
@@ -608,6 +609,7 @@ int runBatch(const BatchArgs& args) {
             }
         }
         ref.add(timeout_text);
+        ref.add(compile_timeout_text);
         ref.addNumber(memory);
         lab.key = ref.hex();
     }
@@ -699,6 +701,8 @@ int runBatch(const BatchArgs& args) {
                                 args.common.backend,
                                 "--timeout",
                                 timeout_text,
+                                "--compile-timeout",
+                                compile_timeout_text,
                                 "--memory",
                                 std::to_string(memory >> 20) + "M"};
                     if (!lab.goldens_root.empty()) {
@@ -803,7 +807,14 @@ int runBatch(const BatchArgs& args) {
                                       fs::path(job.final_dir).filename().string() + ".log"))
                                         .string();
             job.log = log;
-            const Spawned s = spawnWorker(job.argv, log, memory);
+            // The render child below the worker watches its resident memory against `memory` and
+            // caps its address space at 4 GiB more (isolated_render.cpp); the worker gets the same cap.
+            // SHADERLAB_WORKER_ADDRESS_SPACE (a size such as 64M) replaces that cap: for machines
+            // whose driver reserves more, and for the test of a worker that dies.
+            std::size_t worker_as = memory + (std::size_t(4) << 30);
+            if (const char* env = std::getenv("SHADERLAB_WORKER_ADDRESS_SPACE"))
+                parseMemory(env, &worker_as, 1);
+            const Spawned s = spawnWorker(job.argv, log, worker_as);
             if (s.pid < 0) {
                 complete(pick, false, s.error);
                 continue;
@@ -906,6 +917,7 @@ int runBatchWorker(const BatchWorkerArgs& args) {
         options.out_dir = tmp.string();
         options.goldens_root = args.goldens_root;
         options.limits.timeout_s = args.timeout_s;
+        options.limits.compile_timeout_s = args.compile_timeout_s;
         std::size_t memory = 0;
         if (parseMemory(args.memory, &memory)) options.limits.memory_bytes = memory;
         grader::Report report = gradeSubmission(args.submission, options);

@@ -136,10 +136,11 @@ struct BatchArgs {
     std::string out_dir;
     std::string reference_root;  // empty: reference_solutions beside labs/
     bool no_reference = false;
-    std::string cache_dir;  // reference renders; empty: <out>/.shaderlab/references
-    int jobs = 0;           // 0: the number of cores
-    double timeout_s = 60.0;
-    std::string memory = "6G";  // address space of each worker and render process
+    std::string cache_dir;            // reference renders; empty: <out>/.shaderlab/references
+    int jobs = 0;                     // 0: the number of cores
+    double timeout_s = 60.0;          // drawing (IsolationLimits::timeout_s)
+    double compile_timeout_s = 30.0;  // context, files, compile and link
+    std::string memory = "2G";  // resident memory of each render process; workers get 4G more address space
     std::string shard;          // "K/N": every N-th submission from the K-th; empty: all
     std::vector<std::string> formats;
     std::uint64_t max_unpacked_mib = 64;
@@ -152,7 +153,8 @@ struct BatchWorkerArgs {
     std::string labs_root, lab, backend = "osmesa";
     std::string submission, out_dir, goldens_root, reference_root;
     double timeout_s = 60.0;
-    std::string memory = "6G";
+    double compile_timeout_s = 30.0;
+    std::string memory = "2G";
 };
 int runBatchWorker(const BatchWorkerArgs& args);
 

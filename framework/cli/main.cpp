@@ -174,11 +174,17 @@ int main(int argc, char** argv) {
     batch_cmd->add_option("--out", batch.out_dir, "results folder")->required();
     batch_cmd->add_option("--jobs,-j", batch.jobs, "labs graded at once (default: the number of cores)")
         ->check(CLI::Range(1, 256));
-    batch_cmd->add_option("--timeout", batch.timeout_s, "seconds one lab may take to render")
+    batch_cmd->add_option("--timeout", batch.timeout_s, "seconds one lab may take to draw its scenes")
         ->check(CLI::Range(0.1, 86400.0))
         ->capture_default_str();
     batch_cmd
-        ->add_option("--memory", batch.memory, "address space of each worker and render process (e.g. 4G)")
+        ->add_option("--compile-timeout", batch.compile_timeout_s,
+                     "seconds one lab may take to create its context, read, compile and link its shaders")
+        ->check(CLI::Range(0.1, 86400.0))
+        ->capture_default_str();
+    batch_cmd
+        ->add_option("--memory", batch.memory,
+                     "resident memory of each render process (e.g. 2G); workers get 4G more address space")
         ->capture_default_str();
     batch_cmd->add_option("--shard", batch.shard,
                           "K/N: grade only every N-th submission, from the K-th (job arrays)");
@@ -206,6 +212,7 @@ int main(int argc, char** argv) {
     worker_cmd->add_option("--goldens", worker.goldens_root);
     worker_cmd->add_option("--reference", worker.reference_root);
     worker_cmd->add_option("--timeout", worker.timeout_s);
+    worker_cmd->add_option("--compile-timeout", worker.compile_timeout_s);
     worker_cmd->add_option("--memory", worker.memory);
 
     MergeArgs merge;

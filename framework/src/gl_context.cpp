@@ -57,8 +57,9 @@ struct OSMesaApi {
         if (!lib) lib = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
         if (!lib) {
             const char* why = dlerror();
-            a.error = std::string("osmesa: cannot open libOSMesa.so.8 (") + (why ? why : "not found") +
-                      "); install libosmesa6";
+            a.error =
+                std::string("osmesa: cannot open libOSMesa.so.8 (") + (why ? why : "not found") +
+                "); is libosmesa6 installed? (an address-space limit too small to map it also stops it)";
             return a;
         }
         std::string missing;
@@ -98,7 +99,8 @@ struct EglApi {
         if (!lib) {
             const char* why = dlerror();
             a.error = std::string("egl: cannot open libEGL.so.1 (") + (why ? why : "not found") +
-                      "); install libegl1 and libegl-mesa0";
+                      "); are libegl1 and libegl-mesa0 installed? (an address-space limit too small to map "
+                      "them also stops it)";
             return a;
         }
         std::string missing;
