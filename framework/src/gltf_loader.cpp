@@ -16,8 +16,8 @@
 // instance), flat normals when NORMAL is absent, MikkTSpace tangents when TANGENT is absent,
 // metallic-roughness materials (factors and texture references), the first camera (perspective
 // or orthographic), KHR_lights_punctual lights with spot cones, world-space bounds.
-// What it does not: decode images (an image decoder fed untrusted bytes is attack surface the
-// labs do not need; textures are recorded by reference only), skins and morph targets (drawn in
+// What it does not: decode images (their PNG or JPEG bytes are kept; the renderer decodes those a
+// program samples, see material_textures.cpp), skins and morph targets (drawn in
 // their bind pose, with a warning), animations, points and lines (refused with a warning), any
 // other required extension (refused, naming it; docs/scenes.md lists them).
 // Buffers are read as little-endian, which is what glTF stores and what the hosts we run on are.
@@ -155,10 +155,27 @@ bool guardWriteWholeFile(std::string* err, const std::string&, const std::vector
     return false;
 }
 
-// Images are never decoded (see the top of the file); accepting them unread keeps tinygltf from
-// running its image decoder on untrusted bytes.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-               void*) {
+// Images are kept encoded, never decoded here (the renderer decodes the ones a program samples,
+// with its own checks: material_textures.cpp); this keeps tinygltf from running its image
+// decoder on untrusted bytes. tinygltf hands over the bytes of a data: URI or an external file;
+// an image in a bufferView is read later through the Converter's checked bufferView().
+struct ImageBytes {
+    std::map<int, std::vector<unsigned char>> by_image;
+    std::size_t total = 0;
+    std::vector<int> dropped;  // images past the kMaxFileBytes budget
+};
+
+bool keepImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+               const unsigned char* bytes, int size, void* user) {
+    auto* kept = static_cast<ImageBytes*>(user);
+    if (image == nullptr || image->bufferView >= 0 || bytes == nullptr || size <= 0) return true;
+    const auto n = static_cast<std::size_t>(size);
+    if (kept->total + n > kMaxFileBytes) {
+        kept->dropped.push_back(index);
+        return true;
+    }
+    kept->total += n;
+    kept->by_image[index].assign(bytes, bytes + n);
     return true;
 }
 
@@ -593,11 +610,12 @@ struct Bytes {
 class Converter {
   public:
     Converter(const tinygltf::Model& model, Scene* scene, std::vector<std::string>* warnings,
-              std::set<int> fallback_buffers)
+              std::set<int> fallback_buffers, ImageBytes* images)
         : model_(model),
           scene_(*scene),
           warnings_(*warnings),
-          fallback_buffers_(std::move(fallback_buffers)) {}
+          fallback_buffers_(std::move(fallback_buffers)),
+          images_(*images) {}
 
     void run();
 
@@ -764,6 +782,7 @@ class Converter {
                      std::vector<std::uint32_t>* indices, bool* has_indices) const;
     int convertPrimitive(std::size_t mesh_index, std::size_t prim_index);
     std::vector<glm::mat4> instanceTransforms(std::size_t node_index) const;
+    void convertImages();
     void convertMaterials();
     glm::mat4 localMatrix(std::size_t node_index) const;
     glm::mat4 localMatrixUnchecked(std::size_t node_index) const;
@@ -779,6 +798,7 @@ class Converter {
     Scene& scene_;
     std::vector<std::string>& warnings_;
     std::set<int> fallback_buffers_;
+    ImageBytes& images_;
     bool quantized_ = false;                                   // KHR_mesh_quantization is used
     std::map<int, std::vector<unsigned char>> decoded_views_;  // meshopt view -> its bytes
     std::map<int, std::size_t> meshopt_strides_;
@@ -1171,12 +1191,37 @@ int Converter::convertPrimitive(std::size_t mesh_index, std::size_t prim_index) 
     return id;
 }
 
+void Converter::convertImages() {
+    for (int i : images_.dropped)
+        warnings_.push_back("image " + std::to_string(i) + ": the scene's images exceed " +
+                            std::to_string(kMaxFileBytes >> 20) + " MiB in all; this one is not kept");
+    for (std::size_t i = 0; i < model_.images.size(); ++i) {
+        const tinygltf::Image& src = model_.images[i];
+        TextureImage image;
+        image.name = src.name.empty() ? "image" + std::to_string(i) : src.name;
+        if (src.bufferView >= 0) {
+            // A bad view loses this image only: the renderer binds a white texture in its place.
+            try {
+                const Bytes view = bufferView(src.bufferView, "image " + std::to_string(i));
+                image.bytes.assign(view.data, view.data + view.size);
+            } catch (const LoadError& e) {
+                warnings_.push_back(e.message + "; the image is left out");
+            }
+        } else if (auto it = images_.by_image.find(static_cast<int>(i)); it != images_.by_image.end()) {
+            image.bytes = std::move(it->second);
+        }
+        scene_.images.push_back(std::move(image));
+    }
+}
+
 void Converter::convertMaterials() {
+    convertImages();
     for (std::size_t i = 0; i < model_.textures.size(); ++i) {
         const tinygltf::Texture& src = model_.textures[i];
         Texture t;
         if (src.source >= 0 && static_cast<std::size_t>(src.source) < model_.images.size()) {
             const tinygltf::Image& image = model_.images[static_cast<std::size_t>(src.source)];
+            t.image = src.source;
             t.image_uri = image.uri.rfind("data:", 0) == 0 ? std::string() : image.uri;
             t.mime_type = image.mimeType;
         }
@@ -1722,7 +1767,8 @@ SceneLoadResult loadGltfSceneFromBytes(const std::string& bytes, const std::stri
         tinygltf::TinyGLTF gltf;
         gltf.SetFsCallbacks(tinygltf::FsCallbacks{&guardFileExists, &guardExpandFilePath, &guardReadWholeFile,
                                                   &guardWriteWholeFile, &guard});
-        gltf.SetImageLoader(&skipImage, nullptr);
+        ImageBytes images;
+        gltf.SetImageLoader(&keepImage, &images);
 
         tinygltf::Model model;
         std::string err;
@@ -1770,7 +1816,7 @@ SceneLoadResult loadGltfSceneFromBytes(const std::string& bytes, const std::stri
 
         Scene scene;
         scene.source_path = path;
-        Converter(model, &scene, &result.warnings, fallback_buffers).run();
+        Converter(model, &scene, &result.warnings, fallback_buffers, &images).run();
         *out = std::move(scene);
         result.ok = true;
     } catch (const LoadError& e) {

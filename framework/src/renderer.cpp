@@ -4,8 +4,9 @@
 // layout), targets (two copies of those a pass reads while drawing into them, swapped after each
 // run), input textures (made per sampler type on first use), sampler objects, meshes. Each pass
 // run starts from a known state: the program's uniforms back at their linked defaults, every
-// sampler of the program on its own texture unit, every other unit empty, the pass's render
-// state applied in full. Nothing here knows a lab by name.
+// sampler of the program on its own texture unit, every other unit empty (glTF material textures
+// excepted: units of their own, bound per draw, material_textures.h), the pass's render state
+// applied in full. Nothing here knows a lab by name.
 #include "shaderlab/renderer.h"
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include "gl_types.h"
 #include "input_textures.h"
 #include "json_messages.h"
+#include "material_textures.h"
 #include "shaderlab/camera.h"
 #include "shaderlab/gl.h"
 #include "shaderlab/gltf_loader.h"
@@ -597,6 +599,7 @@ class LabRunner {
     std::vector<std::pair<GLuint, GLenum>> bound_units_;  // (unit, texture target) of the last pass
     std::string all_program_text_;                        // every program's prepared sources
     GLuint loop_guard_ = 0;                               // see createLoopGuard()
+    MaterialTextures material_textures_;                  // glTF material textures, bound per draw
 };
 
 // Student files come from the submission, every other program file from the lab folder (or the
@@ -791,8 +794,15 @@ bool LabRunner::bindInputs(const PassSpec& pass, const ShaderProgram& prog) {
     const std::string& file = pass.program.fragment;
     GLuint unit = 0;
     std::set<std::string> fed;
+    const auto fedByLab = [&](const std::string& name) {
+        return std::any_of(pass.inputs.begin(), pass.inputs.end(),
+                           [&](const PassInput& in) { return in.sampler == name; });
+    };
     for (const UniformSlot& slot : prog.uniforms()) {
         if (glTypeInfo(slot.type).kind != ScalarKind::Sampler) continue;
+        // Material textures have units of their own (material_textures.h), unless the lab feeds
+        // the name itself.
+        if (isMaterialSampler(slot.name) && !fedByLab(slot.name)) continue;
         if (slot.size > 1)
             return failAt(RenderStatus::LinkError,
                           "the program declares `" + std::string(glslTypeName(slot.type)) + " " + slot.name +
@@ -869,6 +879,7 @@ bool LabRunner::bindInputs(const PassSpec& pass, const ShaderProgram& prog) {
         ++unit;
     }
     glActiveTexture(GL_TEXTURE0);
+    material_textures_.beginPass(prog, fed, [&](const std::string& message) { warnOnce(file, message); });
     for (const PassInput& in : pass.inputs) {
         if (fed.count(in.sampler)) continue;
         const std::string text = prog.preparedText(0) + prog.preparedText(1);
@@ -1123,6 +1134,9 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
     const bool program_point_size =
         pass.draw == DrawKind::Procedural && mentionsIdentifier(prog.preparedText(0), "gl_PointSize");
     static const Material kDefaultMaterial;
+    const MaterialWarning scene_warning = [&](const std::string& message) {
+        warnOnce("../" + ctx.spec->file, message);
+    };
     auto draw = [&](GpuMesh* mesh, const glm::mat4& model, const Material& material) {
         const glm::vec4& base_color = material.base_color;
         const glm::mat4 model_view = view * model;
@@ -1143,6 +1157,7 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
                      [&](GLint l) { glUniform1f(l, material.roughness); });
         setFramework(prog, file, "u_emissive", GL_FLOAT_VEC3,
                      [&](GLint l) { glUniform3fv(l, 1, glm::value_ptr(material.emissive)); });
+        material_textures_.bindMaterial(ctx.scene->scene, material, scene_warning);
         if (!mesh) {
             glBindVertexArray(empty_vao_);
             glDrawArrays(glPrimitive(pass.primitive), 0, pass.vertex_count);

@@ -1,7 +1,8 @@
 // The in-memory scene a lab pass draws: flattened draw items with world transforms, one camera,
 // punctual lights. Filled by the glTF loader (gltf_loader.h); knows nothing about OpenGL.
-// Materials carry the glTF metallic-roughness factors and which texture each slot names; image
-// bytes are never decoded (see gltf_loader.cpp). docs/scenes.md lists what shaders receive.
+// Materials carry the glTF metallic-roughness factors and which texture each slot names; images
+// are kept encoded (PNG or JPEG bytes), decoded by the renderer only for a program that samples
+// them (material_textures.cpp). docs/scenes.md lists what shaders receive.
 #pragma once
 
 #include <cstdint>
@@ -95,8 +96,15 @@ struct Light {
     float outer_cone = 0.785398163f;
 };
 
-// A glTF texture: its image's URI or bufferView (never decoded here) and its sampler.
+// A glTF image as stored in the file: PNG or JPEG bytes, not decoded by the loader.
+struct TextureImage {
+    std::string name;                 // the image's name, or "image<i>"
+    std::vector<std::uint8_t> bytes;  // empty when the file could not be read (a warning says why)
+};
+
+// A glTF texture: its image (encoded, see TextureImage) and its sampler.
 struct Texture {
+    int image = -1;         // index into Scene::images, -1 = none
     std::string image_uri;  // relative to the scene file; empty for an image in a bufferView
     std::string mime_type;
     bool srgb = false;    // true for base colour and emissive use (glTF 2.0, 3.9.2, 3.9.5)
@@ -111,6 +119,7 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
     std::vector<Texture> textures;
+    std::vector<TextureImage> images;
     std::vector<DrawItem> draw_items;
     bool has_camera = false;  // false: `camera` holds a default framing the bounds
     Camera camera;
