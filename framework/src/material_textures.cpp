@@ -4,8 +4,8 @@
 // "Additional Textures"): base colour and emissive textures hold sRGB-encoded values and are
 // uploaded as GL_SRGB8_ALPHA8, so sampling returns linear values; metallic-roughness, normal and
 // occlusion textures are linear data (GL_RGBA8). Samplers follow the file's sampler; what it
-// leaves unset (section "Samplers": "repeat wrapping and auto filtering") is read as GL_REPEAT,
-// GL_LINEAR magnification and GL_LINEAR_MIPMAP_LINEAR minification.
+// leaves unset (section "Textures": no sampler means repeat wrapping and auto filtering) is read
+// as GL_REPEAT, GL_LINEAR magnification and GL_LINEAR_MIPMAP_LINEAR minification.
 #include "material_textures.h"
 
 #include <stb_image.h>
