@@ -355,4 +355,30 @@ TEST(TangentSpace, BundledSphereTangentsAreUnitOrthogonalAndAlongU) {
     EXPECT_GE(static_cast<double>(along) / static_cast<double>(triangles_checked), 0.97);
 }
 
+// Images are kept as the file stores them, undecoded (the renderer decodes those a program
+// samples): from a data: URI, from a bufferView; a missing file leaves the bytes empty, with
+// tinygltf's warning, and the scene still loads.
+TEST(GltfRealWorld, ImagesAreKeptEncodedFromDataUrisAndBufferViews) {
+    // "SGVsbG8=" is "Hello"; the buffer holds "PNGBYTES" + "JPEG".
+    const std::string gltf = R"({"asset": {"version": "2.0"},
+      "buffers": [{"byteLength": 12, "uri": "data:application/octet-stream;base64,UE5HQllURVNKUEVH"}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 8, "byteLength": 4}],
+      "images": [{"name": "greeting", "uri": "data:image/png;base64,SGVsbG8="},
+                 {"bufferView": 0, "mimeType": "image/jpeg"}, {"uri": "absent.png"}],
+      "textures": [{"source": 1}, {"source": 0}]})";
+    shaderlab::Scene scene;
+    const auto r = shaderlab::loadGltfSceneFromBytes(gltf, realworld("images_in_memory.gltf"), &scene);
+    ASSERT_TRUE(r.ok) << r.error;
+    ASSERT_EQ(scene.images.size(), 3u);
+    EXPECT_EQ(scene.images[0].name, "greeting");
+    EXPECT_EQ(std::string(scene.images[0].bytes.begin(), scene.images[0].bytes.end()), "Hello");
+    EXPECT_EQ(scene.images[1].name, "image1");
+    EXPECT_EQ(std::string(scene.images[1].bytes.begin(), scene.images[1].bytes.end()), "JPEG");
+    EXPECT_TRUE(scene.images[2].bytes.empty());
+    EXPECT_NE(joined(r.warnings).find("image[2]"), std::string::npos) << joined(r.warnings);
+    ASSERT_EQ(scene.textures.size(), 2u);
+    EXPECT_EQ(scene.textures[0].image, 1);
+    EXPECT_EQ(scene.textures[1].image, 0);
+}
+
 }  // namespace
