@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <map>
 
+#include "grader/atomic_file.h"
 #include "shaderlab/batch.h"
 
 namespace fs = std::filesystem;
@@ -231,37 +232,15 @@ std::string Hasher::hex() const {
 // ---- files --------------------------------------------------------------------------------------
 
 bool writeFileAtomically(const std::string& path, const std::string& data, std::string* error) {
-    static unsigned counter = 0;
-    const std::string tmp = path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
-    const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        *error = tmp + ": " + std::strerror(errno);
-        return false;
-    }
-    std::size_t done = 0;
-    while (done < data.size()) {
-        const ssize_t n = write(fd, data.data() + done, data.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            *error = path + ": " + std::strerror(n < 0 ? errno : ENOSPC);
-            close(fd);
-            unlink(tmp.c_str());
-            return false;
-        }
-        done += static_cast<std::size_t>(n);
-    }
-    if (close(fd) != 0) {  // a full disk may only say so here (NFS)
+    // The results folder is the batch's own: a link planted at one of its names is removed, then
+    // the file is written as every report is (grader/atomic_file.h: temporary file, fsync,
+    // rename; it refuses a link that reappears in between).
+    struct stat st {};
+    if (lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode) && unlink(path.c_str()) != 0) {
         *error = path + ": " + std::strerror(errno);
-        unlink(tmp.c_str());
         return false;
     }
-    // rename() replaces a symlink at `path` rather than writing where it points.
-    if (rename(tmp.c_str(), path.c_str()) != 0) {
-        *error = path + ": " + std::strerror(errno);
-        unlink(tmp.c_str());
-        return false;
-    }
-    return true;
+    return grader::writeFileAtomically(path, data, error);
 }
 
 bool linkTree(const std::string& from, const std::string& to, std::string* error) {
