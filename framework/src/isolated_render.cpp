@@ -138,16 +138,7 @@ bool readAt(int fd, void* data, std::size_t n, std::uint64_t offset) {
         result["message"] = r.message;
         result["endless_loop"] = r.endless_loop;
         json diags = json::array();
-        for (const Diagnostic& d : r.diagnostics)
-            diags.push_back({{"file", d.file},
-                             {"line", d.line},
-                             {"column", d.column},
-                             {"severity", d.severity},
-                             {"message", d.message},
-                             {"explanation", d.explanation},
-                             {"source_line", d.source_line},
-                             {"driver_message", d.driver_message},
-                             {"follow_on", d.follow_on}});
+        for (const Diagnostic& d : r.diagnostics) diags.push_back(diagnosticToJson(d));
         result["diagnostics"] = diags;
         json scenes = json::array();
         for (const SceneRender& s : r.scenes) {
@@ -502,6 +493,18 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
     }
     close(result_fd);
     return out;
+}
+
+json diagnosticToJson(const Diagnostic& d) {
+    return {{"file", d.file},
+            {"line", d.line},
+            {"column", d.column},
+            {"severity", d.severity},
+            {"message", d.message},
+            {"explanation", d.explanation},
+            {"source_line", d.source_line},
+            {"driver_message", d.driver_message},
+            {"follow_on", d.follow_on}};
 }
 
 }  // namespace shaderlab

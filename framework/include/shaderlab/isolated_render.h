@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "shaderlab/gl_context.h"
@@ -50,6 +51,10 @@ struct IsolatedRender {
     double compile_ms = 0.0;         // of wall_ms, spent before the first scene
     std::size_t peak_rss_bytes = 0;  // the child's largest resident size the parent saw
 };
+
+// A diagnostic as a JSON object, the form it takes between a render child and its parent (here
+// and in the viewer's render server).
+nlohmann::json diagnosticToJson(const Diagnostic& d);
 
 // `options.progress`, when set, is called in this process with each event the child reports.
 IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_dir, Backend backend,

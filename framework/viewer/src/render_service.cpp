@@ -52,18 +52,6 @@ IsolatedStatus statusFromName(const std::string& s) {
     return IsolatedStatus::Crashed;
 }
 
-json diagnosticJson(const Diagnostic& d) {
-    return {{"file", d.file},
-            {"line", d.line},
-            {"column", d.column},
-            {"severity", d.severity},
-            {"message", d.message},
-            {"explanation", d.explanation},
-            {"source_line", d.source_line},
-            {"driver_message", d.driver_message},
-            {"follow_on", d.follow_on}};
-}
-
 Diagnostic diagnosticFrom(const json& d) {
     return {d.value("file", ""),        d.value("line", 0),
             d.value("column", 0),       d.value("severity", ""),
@@ -79,7 +67,7 @@ bool sendAnswer(int fd, const IsolatedRender& r) {
                  {"last_event", r.last_event},
                  {"wall_ms", r.wall_ms}};
     json diags = json::array();
-    for (const Diagnostic& d : r.render.diagnostics) diags.push_back(diagnosticJson(d));
+    for (const Diagnostic& d : r.render.diagnostics) diags.push_back(diagnosticToJson(d));
     head["diagnostics"] = diags;
     json scenes = json::array();
     for (const SceneRender& s : r.render.scenes) {
