@@ -380,6 +380,7 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
     // error map when there is one, otherwise a copy of the counted errors.
     ErrorPool pool;
     std::vector<float> kept_errors;
+    if (!config.want_map) kept_errors.reserve(plane_size);
     double error_sum = 0.0;
     float max_error = 0.0f;
     auto finish_row = [&](int y, float* const* reference_rows, float* const* test_rows) {
@@ -388,9 +389,11 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
         const std::uint8_t* mask_row = config.mask ? config.mask->values.data() + row_start : nullptr;
         if (config.want_map) {
             std::copy(error_row, error_row + width, result.error_map.begin() + row_start);
+        } else if (mask_row == nullptr) {
+            kept_errors.insert(kept_errors.end(), error_row, error_row + width);
         } else {
             for (int i = 0; i < width; ++i) {
-                if (mask_row == nullptr || mask_row[i]) kept_errors.push_back(error_row[i]);
+                if (mask_row[i]) kept_errors.push_back(error_row[i]);
             }
         }
         pool.addRow(error_row, mask_row, width);

@@ -705,10 +705,12 @@ void flipErrorRow(const float* const* reference, const float* const* test, int b
                   const FlipColourConstants& constants, float* error) {
     enum { kY, kCx, kCz1, kCz2, kDx, kDdx, kDy, kDdy };
     constexpr int kChunk = 256;
-    alignas(32) float distance[kChunk];
+    alignas(32) float distance_row[kChunk];
     alignas(32) float feature[kChunk];
     const float* const* images[2] = {reference, test};
     const F pccmax = splat(constants.pccmax);
+    const F log_pccmax = log2Positive(pccmax);
+    const F log_below_scale = log2Positive(splat(constants.below_scale));
     for (int chunk = begin; chunk < end; chunk += kChunk) {
         const int chunk_end = end - chunk < kChunk ? end : chunk + kChunk;
         // Colour distance (HyAB) and feature difference (before the exponent qf).
@@ -727,19 +729,33 @@ void flipErrorRow(const float* const* reference, const float* const* test, int b
             }
             const F da = lab[0].a - lab[1].a;
             const F db = lab[0].b - lab[1].b;
-            store(distance + (x - chunk), vabs(lab[0].l - lab[1].l) + vsqrt(da * da + db * db));
+            store(distance_row + (x - chunk), vabs(lab[0].l - lab[1].l) + vsqrt(da * da + db * db));
             store(feature + (x - chunk), vmax(vabs(edge[0] - edge[1]), vabs(point[0] - point[1])));
         }
         // Colour error: the distance compressed by qc = 0.7 and redistributed so that
         // pc * cmax lands at pt; feature error with qf = 0.5, a square root; combined error
-        // colour^(1 - feature).
+        // colour^(1 - feature). Below the bend the colour error is a constant times
+        // distance^0.7, so its logarithm is 0.7 log2(distance) + log2(below_scale) and the
+        // power needs one log2 and one exp2 instead of two of each; a group with a lane above
+        // the bend (rare: pc * cmax is a large colour distance) takes the long way.
         for (int x = chunk; x < chunk_end; x += kLanes) {
-            const F compressed = powNonNegative(load(distance + (x - chunk)), splat(0.7f));
-            const F colour = compressed < pccmax
-                                 ? compressed * constants.below_scale
-                                 : constants.pt + (compressed - pccmax) * constants.above_scale;
-            const F feature_error = vsqrt(load(feature + (x - chunk)) * 0.70710678f);
-            store(error + x, powNonNegative(colour, 1.0f - feature_error));
+            const F distance = load(distance_row + (x - chunk));
+            const I positive = distance > splat(1e-30f);
+            const F log_distance = log2Positive(positive ? distance : splat(1.0f));
+            const I above = positive & (log_distance * 0.7f >= log_pccmax);
+            F log_colour;
+            if (!anyLane(above)) {
+                log_colour = mulAdd(splat(0.7f), log_distance, log_below_scale);
+            } else {
+                const F compressed = exp2(log_distance * 0.7f);
+                const F colour = above ? constants.pt + (compressed - pccmax) * constants.above_scale
+                                       : compressed * constants.below_scale;
+                log_colour = log2Positive(positive ? colour : splat(1.0f));
+            }
+            const F exponent = 1.0f - vsqrt(load(feature + (x - chunk)) * 0.70710678f);
+            // No distance, no colour error: 0^exponent, which is 1 only for exponent 0.
+            const F zero_distance = exponent == splat(0.0f) ? splat(1.0f) : splat(0.0f);
+            store(error + x, positive ? exp2(exponent * log_colour) : zero_distance);
         }
     }
 }
