@@ -376,6 +376,29 @@ TEST_F(LabFeatures, FullscreenBackgroundDoesNotHideALaterSceneDraw) {
     EXPECT_EQ(std::count(ball.coverage.begin(), ball.coverage.end(), 1), 32 * 32);
 }
 
+TEST_F(LabFeatures, DepthBufferOnlyWhereAPassUsesDepth) {
+    // Both targets default to "depth": "buffer". Only the scene pass tests and writes depth, so
+    // only its target gets one: with every pass kept, it alone has a depth image.
+    write("grey.frag", fragment("", "o_color = vec4(0.5);"));
+    write("red.frag", "#version 330 core\nout vec4 o_color;\nvoid main() { o_color = vec4(1, 0, 0, 1); }\n");
+    const auto r = render(R"("resolution": [16, 16], "passes": [
+        {"name": "ball", "program": {"vertex": "scene.vert", "fragment": "red.frag"},
+         "camera": {"position": [0, 0, 3], "target": [0, 0, 0]}},
+        {"name": "post", "program": {"vertex": "fullscreen.vert", "fragment": "grey.frag"}, "draw": "fullscreen"}],
+        "scenes": [{"name": "s", "file": "scenes/sphere.gltf"}])",
+                          /*all_passes=*/true);
+    ASSERT_EQ(r.status, RenderStatus::Ok) << diagnostics(r);
+    std::vector<std::string> depth_images;
+    for (const shaderlab::PassImage& p : r.scenes[0].passes)
+        if (p.attachment == "depth") depth_images.push_back(p.pass);
+    EXPECT_EQ(depth_images, std::vector<std::string>{"ball"});
+    // The scene pass's depth buffer still masks what it covers.
+    const shaderlab::PassImage& ball = r.scenes[0].passes.front();
+    const auto covered = std::count(ball.coverage.begin(), ball.coverage.end(), 1);
+    EXPECT_GT(covered, 0);
+    EXPECT_LT(covered, 16 * 16);
+}
+
 TEST_F(LabFeatures, BlendingCullingAndClearsPerAttachment) {
     write("quarter.frag", fragment("", "o_color = vec4(0.25);"));
     write("facing.frag",

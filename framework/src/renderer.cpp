@@ -163,6 +163,7 @@ GLenum internalFormat(TargetFormat f) {
 // framebuffer per (set, cube face).
 struct TargetGl {
     const TargetSpec* spec = nullptr;
+    DepthMode depth = DepthMode::None;  // what was allocated: the spec's, or none when unused
     int buffers = 1;
     int front = 0;  // the set holding the latest result
     std::vector<GLuint> color[2];
@@ -205,12 +206,12 @@ bool createTarget(TargetGl* t, std::string* error) {
             if (t->mipmapped) glGenerateMipmap(tex_target);
         }
     }
-    if (s.depth == DepthMode::Texture) {
+    if (t->depth == DepthMode::Texture) {
         glGenTextures(1, &t->depth_texture);
         glBindTexture(GL_TEXTURE_2D, t->depth_texture);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, s.width, s.height, 0, GL_DEPTH_COMPONENT,
                      GL_FLOAT, nullptr);
-    } else if (s.depth == DepthMode::Buffer) {
+    } else if (t->depth == DepthMode::Buffer) {
         glGenRenderbuffers(1, &t->depth_renderbuffer);
         glBindRenderbuffer(GL_RENDERBUFFER, t->depth_renderbuffer);
         glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, s.width, s.height);
@@ -421,7 +422,7 @@ std::vector<std::uint8_t> readCoverage(const TargetGl& t) {
     const TargetSpec& s = *t.spec;
     const std::size_t n = static_cast<std::size_t>(s.width) * t.faces() * s.height;
     std::vector<std::uint8_t> coverage(n, 1);
-    if (t.fullscreen_drawn || s.depth == DepthMode::None || t.cube()) return coverage;
+    if (t.fullscreen_drawn || t.depth == DepthMode::None || t.cube()) return coverage;
     const int w = s.width, h = s.height;
     std::vector<float> depth(static_cast<std::size_t>(w) * h);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, t.fbos.at({t.front, 0}));
@@ -726,9 +727,21 @@ bool LabRunner::createTargets() {
                 mipmapped.insert(in.target);
         }
     }
+    // A depth buffer (not a depth texture, which later passes read) is allocated only when a
+    // pass drawing into the target tests or writes depth, or grades it: a target that only
+    // full-screen passes draw (post-processing, unless its lab.json says "depth": "none") would
+    // otherwise be cleared and carried for nothing.
+    std::set<std::string> depth_used;
+    for (const PassSpec& pass : spec_.passes) {
+        const bool grades_depth =
+            std::find(pass.graded.begin(), pass.graded.end(), "depth") != pass.graded.end();
+        if (pass.state.depth_test || pass.state.depth_write || grades_depth) depth_used.insert(pass.target);
+    }
     for (const TargetSpec& spec : spec_.targets) {
         auto t = std::make_unique<TargetGl>();
         t->spec = &spec;
+        t->depth =
+            spec.depth == DepthMode::Buffer && !depth_used.count(spec.name) ? DepthMode::None : spec.depth;
         t->buffers = self_read.count(spec.name) ? 2 : 1;
         t->mipmapped = mipmapped.count(spec.name) > 0;
         std::string err;
@@ -986,7 +999,7 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
             const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
             for (std::size_t i = 0; i < t->spec->attachments.size(); ++i)
                 glClearBufferfv(GL_COLOR, static_cast<GLint>(i), zero);
-            if (t->spec->depth != DepthMode::None) {
+            if (t->depth != DepthMode::None) {
                 const GLfloat one = 1.0f;
                 glClearBufferfv(GL_DEPTH, 0, &one);
             }
@@ -1172,7 +1185,7 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
         glBindFramebuffer(GL_FRAMEBUFFER, target.fbos.at({write, face}));
         glViewport(0, 0, tspec.width, tspec.height);
         applyState(pass.state, tspec.format == TargetFormat::SRGB8, program_point_size);
-        clearTarget(pass.state, tspec.depth != DepthMode::None);
+        clearTarget(pass.state, target.depth != DepthMode::None);
         setFramework(prog, file, "u_cube_face", GL_INT, [&](GLint l) { glUniform1i(l, face); });
         if (pass.draw == DrawKind::Fullscreen) {
             draw(fullscreen_.get(), glm::mat4(1.0f), kDefaultMaterial);
@@ -1215,7 +1228,7 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
     std::vector<std::string> read = pass.graded;
     if (options_.keep_all_passes) {
         read = tspec.attachments;
-        if (tspec.depth != DepthMode::None && !target.cube()) read.push_back("depth");
+        if (target.depth != DepthMode::None && !target.cube()) read.push_back("depth");
     }
     if (read.empty()) return true;
     ScopedTiming timing("readback", spec_.id, ctx.spec->name);
