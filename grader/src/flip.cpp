@@ -172,18 +172,6 @@ Filters makeFilters(float ppd) {
     return f;
 }
 
-// The sRGB curve's power segment ((v + 0.055) / 1.055)^2.4 at kSrgbIntervals + 1 points on
-// [0, 1], in double; the kernels interpolate linearly (error below 3e-8).
-struct SrgbTable {
-    float values[kSrgbIntervals + 1];
-    SrgbTable() {
-        for (int i = 0; i <= kSrgbIntervals; ++i) {
-            values[i] =
-                static_cast<float>(std::pow((i / static_cast<double>(kSrgbIntervals) + 0.055) / 1.055, 2.4));
-        }
-    }
-};
-
 // ---- pooling -----------------------------------------------------------------------------
 
 // The FLIP tool's weighted percentile: with the errors sorted ascending, the first e_i whose
@@ -294,7 +282,6 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
     const std::size_t plane_size = static_cast<std::size_t>(width) * height;
     const Filters filters = makeFilters(config.pixels_per_degree);
     const int pad = filters.pad_radius;
-    static const SrgbTable srgb_table;
 
     // Largest possible colour distance (green against blue), and where redistribution bends.
     const float cmax =
@@ -353,9 +340,8 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
             const int channels = image.channels;
             const float* row = &image.pixels[static_cast<std::size_t>(y) * width * channels];
             kernels.deinterleave_rgb(row, channels, width, srgb_row[0], srgb_row[1], srgb_row[2]);
-            kernels.flip_colour_row(srgb_row, width, srgb_table.values, padded[kChannelY] + pad,
-                                    padded[kChannelCx] + pad, padded[kChannelCz] + pad,
-                                    padded[kChannelLuminance] + pad);
+            kernels.flip_colour_row(srgb_row, width, padded[kChannelY] + pad, padded[kChannelCx] + pad,
+                                    padded[kChannelCz] + pad, padded[kChannelLuminance] + pad);
             for (float* p : padded) detail::fillBorders(p, width, pad, detail::Border::ClampToEdge);
 
             float* const* out = rings[which];

@@ -25,8 +25,7 @@ constexpr float kLabDeltaCube = kLabDelta * kLabDelta * kLabDelta;
 constexpr float kLabLinearSlope = 1.0f / (3.0f * kLabDelta * kLabDelta);
 constexpr float kLabLinearOffset = 4.0f / 29.0f;
 
-// The sRGB power segment is tabulated at kSrgbIntervals + 1 points on [0, 1].
-constexpr int kSrgbIntervals = 4096;
+// Where the sRGB curve's linear segment ends (IEC 61966-2-1).
 constexpr float kSrgbLinearLimit = 0.04045f;  // below: linear segment v / 12.92
 
 }  // namespace grader::detail::flip_constants

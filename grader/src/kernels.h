@@ -98,10 +98,9 @@ struct KernelTable {
                          float high, float* out);
 
     // FLIP, step 1: sRGB rows (R, G, B; any values, clamped to [0,1] here) to the YCxCz
-    // channels and the luminance Y / Y_white. `srgb_table` holds 4097 samples of the sRGB
-    // curve's power segment on [0, 1]. Writes whole vector groups.
-    void (*flip_colour_row)(const float* const* srgb, int width, const float* srgb_table, float* y, float* cx,
-                            float* cz, float* luminance);
+    // channels and the luminance Y / Y_white. Writes whole vector groups.
+    void (*flip_colour_row)(const float* const* srgb, int width, float* y, float* cx, float* cz,
+                            float* luminance);
 
     // FLIP, step 3: the per-pixel error at x in [begin, end) of one row. `reference` and `test`
     // each point at eight filtered rows: Y, Cx, Cz part 1, Cz part 2, dx, ddx, dy, ddy of the
