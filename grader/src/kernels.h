@@ -10,7 +10,7 @@
 // Row pointers handed to the per-pixel functions (ssim_row, flip_colour_row, flip_error_row)
 // must be readable, and their outputs writable, up to the row width rounded up to kMaxLanes:
 // they work in whole vector groups, and the extra lanes never affect the first `width`
-// results. The filter passes, deinterleave_rgb, ssim_inputs_row and the reductions touch
+// results. The filter passes, deinterleave_rgb, the ssim_*_row inputs, widen_row and the reductions touch
 // exactly the range they are given.
 #pragma once
 
@@ -79,14 +79,23 @@ struct KernelTable {
     // same number (3 or 4) of channels, in double.
     double (*squared_error_rgb)(const float* a, const float* b, int channels, int count);
 
-    // SSIM, the inputs of the four moments (see ssim.cpp) in double: s = x + y, s^2, d = x - y,
-    // d^2.
-    void (*ssim_inputs_row)(const float* x, const float* y, int width, double* s, double* ss, double* d,
-                            double* dd);
+    // SSIM, the inputs of the two moments of s = x + y (or, with `difference`, of d = x - y) in
+    // double: v and v^2. Writes exactly `width` values each.
+    void (*ssim_inputs_row)(const float* x, const float* y, int width, bool difference, double* v,
+                            double* vv);
+    // The same for d in float (d and d^2). Returns whether every |d| is at most `limit` (false
+    // for NaN). Writes exactly `width` values each.
+    bool (*ssim_small_differences_row)(const float* x, const float* y, int width, float limit, float* d,
+                                       float* dd);
+    // out[i] = in[i] in double, i in [0, n).
+    void (*widen_row)(const float* in, int n, double* out);
     // SSIM at x in [begin, end) of one row from its windowed moments (means of s, s^2 and of
     // d, d^2), computed in double, stored as float. `begin` must be a multiple of kMaxLanes.
+    // The _small_differences variant takes the moments of d in float (see ssim.cpp).
     void (*ssim_row)(const double* const* s_moments, const double* const* d_moments, int begin, int end,
                      double c1, double c2, float* out);
+    void (*ssim_row_small_differences)(const double* const* s_moments, const float* const* d_moments,
+                                       int begin, int end, double c1, double c2, float* out);
 
     // Sum (in double) and maximum of values[begin, end) where mask is non-zero (mask may be
     // nullptr: every value counts). The maximum starts at `*max` and ignores NaN.

@@ -583,33 +583,64 @@ int collectRange(const float* values, const unsigned char* mask, int begin, int 
 
 // ---- SSIM --------------------------------------------------------------------------------
 
-void ssimInputsRow(const float* x, const float* y, int width, double* s, double* ss, double* d, double* dd) {
+void ssimInputsRow(const float* x, const float* y, int width, bool difference, double* v, double* vv) {
+    const double sign = difference ? -1.0 : 1.0;
     int i = 0;
     for (; i + kDoubleLanes <= width; i += kDoubleLanes) {
         const D a = __builtin_convertvector(loadVector<HalfF>(x + i), D);
         const D b = __builtin_convertvector(loadVector<HalfF>(y + i), D);
-        const D sum = a + b, difference = a - b;
-        storeVector(s + i, sum);
-        storeVector(ss + i, sum * sum);
-        storeVector(d + i, difference);
-        storeVector(dd + i, difference * difference);
+        const D value = a + sign * b;  // exact: two floats' sum or difference fits a double
+        storeVector(v + i, value);
+        storeVector(vv + i, value * value);
     }
     for (; i < width; ++i) {
-        const double sum = static_cast<double>(x[i]) + y[i], difference = static_cast<double>(x[i]) - y[i];
-        s[i] = sum;
-        ss[i] = sum * sum;
-        d[i] = difference;
-        dd[i] = difference * difference;
+        const double value = static_cast<double>(x[i]) + sign * y[i];
+        v[i] = value;
+        vv[i] = value * value;
     }
 }
 
-void ssimRow(const double* const* s_moments, const double* const* d_moments, int begin, int end, double c1,
-             double c2, float* out) {
+bool ssimSmallDifferencesRow(const float* x, const float* y, int width, float limit, float* d, float* dd) {
+    I large = splatInt(0);
+    int i = 0;
+    for (; i + kLanes <= width; i += kLanes) {
+        const F difference = load(x + i) - load(y + i);
+        store(d + i, difference);
+        store(dd + i, difference * difference);
+        large |= ~(vabs(difference) <= splat(limit));  // NaN counts as large
+    }
+    bool small = !anyLane(large);
+    for (; i < width; ++i) {
+        const float difference = x[i] - y[i];
+        d[i] = difference;
+        dd[i] = difference * difference;
+        small = small && (difference <= limit && -difference <= limit);
+    }
+    return small;
+}
+
+void widenRow(const float* in, int n, double* out) {
+    int i = 0;
+    for (; i + kDoubleLanes <= n; i += kDoubleLanes)
+        storeVector(out + i, __builtin_convertvector(loadVector<HalfF>(in + i), D));
+    for (; i < n; ++i) out[i] = in[i];
+}
+
+template <typename DifferenceT>
+void ssimRowOf(const double* const* s_moments, const DifferenceT* const* d_moments, int begin, int end,
+               double c1, double c2, float* out) {
     for (int x = begin; x < end; x += kDoubleLanes) {
+        D md, md_squares;
+        if constexpr (sizeof(DifferenceT) == sizeof(float)) {
+            md = __builtin_convertvector(loadVector<HalfF>(d_moments[0] + x), D);
+            md_squares = __builtin_convertvector(loadVector<HalfF>(d_moments[1] + x), D);
+        } else {
+            md = loadVector<D>(d_moments[0] + x);
+            md_squares = loadVector<D>(d_moments[1] + x);
+        }
         const D ms = loadVector<D>(s_moments[0] + x);
-        const D md = loadVector<D>(d_moments[0] + x);
         const D var_s = loadVector<D>(s_moments[1] + x) - ms * ms;
-        const D var_d = loadVector<D>(d_moments[1] + x) - md * md;
+        const D var_d = md_squares - md * md;
         const D ms2 = ms * ms, md2 = md * md;
         // (2 mu_x mu_y + C1)(2 sigma_xy + C2) / ((mu_x^2 + mu_y^2 + C1)(sigma_x^2 + sigma_y^2 + C2))
         // The differences above needed double; the quotient, stored as float, does not (a
@@ -619,6 +650,16 @@ void ssimRow(const double* const* s_moments, const double* const* d_moments, int
         storeVector(out + x,
                     __builtin_convertvector(numerator, HalfF) / __builtin_convertvector(denominator, HalfF));
     }
+}
+
+void ssimRow(const double* const* s_moments, const double* const* d_moments, int begin, int end, double c1,
+             double c2, float* out) {
+    ssimRowOf(s_moments, d_moments, begin, end, c1, c2, out);
+}
+
+void ssimRowSmallDifferences(const double* const* s_moments, const float* const* d_moments, int begin,
+                             int end, double c1, double c2, float* out) {
+    ssimRowOf(s_moments, d_moments, begin, end, c1, c2, out);
 }
 
 // ---- FLIP --------------------------------------------------------------------------------
@@ -782,7 +823,10 @@ KernelTable makeTable() {
     table.deinterleave_rgb = deinterleaveRgb;
     table.squared_error_rgb = squaredErrorRgb;
     table.ssim_inputs_row = ssimInputsRow;
+    table.ssim_small_differences_row = ssimSmallDifferencesRow;
+    table.widen_row = widenRow;
     table.ssim_row = ssimRow;
+    table.ssim_row_small_differences = ssimRowSmallDifferences;
     table.masked_sum_max = maskedSumMax;
     table.collect_range = collectRange;
     table.flip_colour_row = flipColourRow;
