@@ -181,18 +181,12 @@ Filters makeFilters(float ppd) {
 // answers are collected and sorted.
 class ErrorPool {
   public:
-    // Adds the errors of one row whose mask is non-zero (all of them if mask is nullptr).
+    // Adds the errors of one row whose mask is non-zero (all of them if mask is nullptr). Four
+    // interleaved copies of the bins: neighbouring pixels tend to fall in the same bin, and
+    // adding into one memory cell back to back would serialise on it.
     void addRow(const float* errors, const std::uint8_t* mask, int width) {
-        // Four interleaved copies of the bins: neighbouring pixels tend to fall in the same
-        // bin, and adding into one memory cell back to back would serialise on it.
-        double* bins = partial_.data();
-        std::size_t added = 0;
-        for (int i = 0; i < width; ++i) {
-            if (mask != nullptr && mask[i] == 0) continue;
-            bins[(i & 3) * kBins + binOf(errors[i])] += errors[i];
-            ++added;
-        }
-        count_ += added;
+        count_ += static_cast<std::size_t>(
+            detail::kernels().add_to_bins(errors, mask, width, kBins, partial_.data()));
     }
     std::size_t count() const { return count_; }
 
@@ -217,7 +211,7 @@ class ErrorPool {
             int bin = 0;
             while (bin < kBins - 1 && running + bin_sum[bin] <= target) running += bin_sum[bin++];
             // ...then a walk through that bin's sorted values. Bin b holds [b, b + 1) / kBins
-            // (the last one everything above), exactly as binOf assigns them.
+            // (the last one everything above), exactly as add_to_bins assigns them.
             values.clear();
             collect(static_cast<float>(bin) / kBins,
                     bin == kBins - 1 ? std::numeric_limits<float>::infinity()
@@ -237,7 +231,6 @@ class ErrorPool {
 
   private:
     static constexpr int kBins = 4096;
-    static int binOf(float e) { return std::min(kBins - 1, std::max(0, static_cast<int>(e * kBins))); }
     std::vector<double> partial_ = std::vector<double>(4 * kBins, 0.0);
     std::size_t count_ = 0;
 };

@@ -101,6 +101,11 @@ struct KernelTable {
     // nullptr: every value counts). The maximum starts at `*max` and ignores NaN.
     double (*masked_sum_max)(const float* values, const unsigned char* mask, int begin, int end, float* max);
 
+    // FLIP's error histogram: adds each values[i], i in [0, n), with mask[i] non-zero (mask may
+    // be nullptr) to bins[(i % 4) * bin_count + clamp(int(values[i] * bin_count), 0,
+    // bin_count - 1)] (four interleaved copies of the bins; see flip.cpp). Returns how many.
+    int (*add_to_bins)(const float* values, const unsigned char* mask, int n, int bin_count, double* bins);
+
     // Copies the values[i], i in [begin, end), with mask[i] non-zero (mask may be nullptr) and
     // low <= values[i] < high to `out`, in order; returns how many.
     int (*collect_range)(const float* values, const unsigned char* mask, int begin, int end, float low,

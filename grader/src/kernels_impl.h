@@ -562,6 +562,46 @@ double squaredErrorRgb(const float* a, const float* b, int channels, int count) 
     return total;
 }
 
+int addToBins(const float* values, const unsigned char* mask, int n, int bin_count, double* bins) {
+    // The bin numbers eight at a time; the additions one by one (a scatter with repeated
+    // indices would lose some). Lane i lands in copy i % 4, so neighbouring pixels, which tend
+    // to share a bin, do not wait on each other's additions.
+    alignas(32) std::int32_t index[kLanes];
+    const F scale = splat(static_cast<float>(bin_count));
+    const I last = splatInt(bin_count - 1);
+    I offset;
+    for (int lane = 0; lane < kLanes; ++lane) offset[lane] = (lane % 4) * bin_count;
+    int added = 0;
+    int x = 0;
+    for (; x + kLanes <= n; x += kLanes) {
+        const F v = load(values + x);
+        I bin = __builtin_convertvector(v * scale, I);
+        bin = bin < splatInt(0) ? splatInt(0) : bin;
+        bin = bin > last ? last : bin;
+        storeVector(index, bin + offset);
+        if (mask == nullptr) {
+#pragma GCC unroll 8
+            for (int lane = 0; lane < kLanes; ++lane) bins[index[lane]] += values[x + lane];
+            added += kLanes;
+        } else {
+            for (int lane = 0; lane < kLanes; ++lane) {
+                if (mask[x + lane] == 0) continue;
+                bins[index[lane]] += values[x + lane];
+                ++added;
+            }
+        }
+    }
+    for (; x < n; ++x) {
+        if (mask != nullptr && mask[x] == 0) continue;
+        const float scaled = values[x] * static_cast<float>(bin_count);
+        int bin = scaled > 0.0f ? static_cast<int>(scaled) : 0;  // NaN -> 0
+        bin = bin < bin_count - 1 ? bin : bin_count - 1;
+        bins[(x % 4) * bin_count + bin] += values[x];
+        ++added;
+    }
+    return added;
+}
+
 int collectRange(const float* values, const unsigned char* mask, int begin, int end, float low, float high,
                  float* out) {
     // Mostly nothing matches: test a whole group at once, look at lanes only when one does.
@@ -828,6 +868,7 @@ KernelTable makeTable() {
     table.ssim_row = ssimRow;
     table.ssim_row_small_differences = ssimRowSmallDifferences;
     table.masked_sum_max = maskedSumMax;
+    table.add_to_bins = addToBins;
     table.collect_range = collectRange;
     table.flip_colour_row = flipColourRow;
     table.flip_error_row = flipErrorRow;
