@@ -136,12 +136,23 @@ void BM_AllThreeBySize(benchmark::State& state) {
     state.counters["pixels"] = static_cast<double>(size) * size;
 }
 
+// SSIM alone at state.range(0) x state.range(0), for the size table's comparison with
+// scikit-image's structural_similarity (timed by bench/run_bench.py where it is installed).
+void BM_SsimBySize(benchmark::State& state) {
+    const int size = static_cast<int>(state.range(0));
+    const grader::Image a = gradientWithNoise(1, 0.0f, 0.04f, size),
+                        b = gradientWithNoise(2, 0.3f, 0.04f, size);
+    for (auto _ : state) benchmark::DoNotOptimize(grader::computeSsim(a, b).ssim);
+    state.counters["pixels"] = static_cast<double>(size) * size;
+}
+
 }  // namespace
 
 BENCHMARK(BM_JudgeImage)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_JudgeImageIdentical)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_JudgeImageNearlyIdentical)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AllThreeBySize)->RangeMultiplier(2)->Range(64, 1024)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SsimBySize)->RangeMultiplier(2)->Range(64, 1024)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Psnr)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Ssim)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Flip)->Unit(benchmark::kMillisecond);

@@ -8,7 +8,8 @@
 #   bash scripts/bench.sh --quick    # fewer repetitions and resolutions, to try the machinery
 #   bash scripts/bench.sh --replot   # no measuring: the page and plots again from the last results
 # Raw results: build/bench-results/results.json. Needs gnuplot for the plots (scripts/setup.sh
-# installs it; without it the page has tables only).
+# installs it; without it the page has tables only) and installs python3-skimage, if it can, to
+# time scikit-image's SSIM beside ours.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -f build/CMakeCache.txt ]; then
@@ -16,6 +17,12 @@ if [ ! -f build/CMakeCache.txt ]; then
 fi
 cmake --build build -j"$(nproc)" --target shaderlab bench_metrics bench_tessellation >/dev/null
 command -v gnuplot >/dev/null || echo "bench: gnuplot not found (apt-get install gnuplot-nox): tables only" >&2
+# scikit-image is timed against our SSIM in the same run where it is installed; Debian packages it.
+if ! /usr/bin/python3 -c "import skimage" 2>/dev/null; then
+  sudo=""; [ "$(id -u)" = 0 ] || sudo="sudo"
+  $sudo apt-get install -y --no-install-recommends python3-skimage >/dev/null 2>&1 ||
+    echo "bench: python3-skimage could not be installed: no scikit-image column" >&2
+fi
 # The system Python: the script needs its standard library only.
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
