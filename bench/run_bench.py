@@ -548,7 +548,7 @@ def write_page(res, figs, elapsed_s, command):
              (comp, sum(x["scenes"] for x in g)))
     un = res["unneeded"]
     listed = ", ".join("%s: %s" % (k, ", ".join(v)) for k, v in un.items() if v) or "none in any lab"
-    L.append("| passes no graded image depends on | - | %s | nothing to skip today, so the renderer does not try |" % listed)
+    L.append("| passes no graded image depends on | run | not run when grading (`render --all-passes` and the viewer run every pass); in the bundled labs: %s | `LabRunner::findNeededPasses` in `framework/src/renderer.cpp`; test `LabFeatures.PassNoGradedImageDependsOnIsNotRun` |" % listed)
     L.append("| reference images | %.0f ms per lab (rendering the reference) | %.0f ms per lab (`--no-reference`: stored goldens) | the goldens are the reference images kept; `shaderlab goldens` refreshes them |" %
              (mean_lab_ref, mean_lab))
     L.append("| depth buffers of targets no pass tests, writes or grades depth in | allocated and cleared every scene | not allocated | `LabRunner::createTargets` in `framework/src/renderer.cpp`. No bundled lab has such a target (their full-screen targets say `\"depth\": \"none\"`); with those lines deleted from 05 and 06, rendering both took 1.8 MB less peak memory and drew identical images (measured by hand on 2026-11-25, not by this script) |")

@@ -399,6 +399,28 @@ TEST_F(LabFeatures, DepthBufferOnlyWhereAPassUsesDepth) {
     EXPECT_LT(covered, 16 * 16);
 }
 
+TEST_F(LabFeatures, PassNoGradedImageDependsOnIsNotRun) {
+    // "spin" draws into a target nobody reads and is not graded; its shader loops past the loop
+    // guard's limit, so running it fails the lab. Grading skips it; keeping every pass (render
+    // --all-passes, the viewer) runs it. "base" feeds the graded pass and always runs.
+    write("grey.frag", fragment("", "o_color = vec4(0.5);"));
+    write("copy.frag", fragment("uniform sampler2D u_base;", "o_color = texture(u_base, v_uv);"));
+    write("spin.frag", fragment("",
+                                "float a = 0.0;\nfor (int i = 0; i < 100000000; ++i) a += sin(float(i));\n"
+                                "o_color = vec4(a);"));
+    const std::string lab = fullscreenLab(R"(
+        {"name": "base", "program": {"vertex": "fullscreen.vert", "fragment": "grey.frag"}, "draw": "fullscreen"},
+        {"name": "spin", "program": {"vertex": "fullscreen.vert", "fragment": "spin.frag"}, "draw": "fullscreen"},
+        {"name": "show", "program": {"vertex": "fullscreen.vert", "fragment": "copy.frag"}, "draw": "fullscreen",
+         "inputs": {"u_base": "base"}})");
+    const auto graded = render(lab);
+    ASSERT_EQ(graded.status, RenderStatus::Ok) << diagnostics(graded);
+    EXPECT_NEAR(image(graded, "show").at(3, 3, 0), 0.5f, 1e-6f);
+    const auto every_pass = render(lab, /*all_passes=*/true);
+    EXPECT_NE(every_pass.status, RenderStatus::Ok)
+        << "the spinning pass ran and should have hit the loop guard";
+}
+
 TEST_F(LabFeatures, BlendingCullingAndClearsPerAttachment) {
     write("quarter.frag", fragment("", "o_color = vec4(0.25);"));
     write("facing.frag",

@@ -492,6 +492,7 @@ class LabRunner {
         compile_timing.stop();
         if (!createTargets()) return false;
         createLoopGuard();
+        findNeededPasses();
         return true;
     }
     bool renderScene(const SceneSpec& scene_spec);
@@ -573,6 +574,7 @@ class LabRunner {
     bool buildPrograms();
     void checkOutputs(const ShaderProgram& prog, const PassSpec& pass, const TargetSpec& target);
     bool createTargets();
+    void findNeededPasses();
     const LoadedScene* loadScene(const SceneSpec& scene_spec);
     GLuint sampler(TextureFilter filter, TextureWrap wrap, bool shadow);
     bool bindInputs(const PassSpec& pass, const ShaderProgram& prog);
@@ -591,6 +593,7 @@ class LabRunner {
     std::map<std::string, std::string> sources_;  // program file -> text
     std::map<std::string, ShaderProgram> programs_;
     std::map<std::string, std::unique_ptr<TargetGl>> targets_;
+    std::vector<bool> needed_;  // per pass: whether a graded image depends on it (see findNeededPasses)
     std::map<std::string, InputTexture> input_textures_;
     std::map<std::tuple<int, int, bool>, GLuint> samplers_;
     std::map<std::string, LoadedScene> scenes_;
@@ -714,6 +717,48 @@ void LabRunner::checkOutputs(const ShaderProgram& prog, const PassSpec& pass, co
         if (!written.count(static_cast<int>(i)))
             warnOnce(file, "no output writes attachment '" + target.attachments[i] + "' of target '" +
                                target.name + "' (name it o_" + target.attachments[i] + ")");
+}
+
+// A pass runs only when an image the caller keeps depends on it: the graded passes, what they
+// read (the passes drawing into those targets), and the earlier passes drawing into the same
+// target (a pass that does not clear adds to them), followed back to the first pass. A loop
+// (`repeat`) runs whole or not at all. With keep_all_passes (`render --all-passes`, the
+// viewer) every pass runs, since every pass is shown.
+void LabRunner::findNeededPasses() {
+    const std::size_t n = spec_.passes.size();
+    needed_.assign(n, options_.keep_all_passes);
+    if (options_.keep_all_passes) return;
+    std::vector<std::size_t> work;
+    auto need = [&](std::size_t i) {
+        if (needed_[i]) return;
+        needed_[i] = true;
+        work.push_back(i);
+        const int loop = spec_.passes[i].loop;
+        if (loop < 0) return;
+        const LoopSpec& l = spec_.loops[static_cast<std::size_t>(loop)];
+        for (std::size_t j = l.first; j <= l.last; ++j)
+            if (!needed_[j]) {
+                needed_[j] = true;
+                work.push_back(j);
+            }
+    };
+    for (std::size_t i = 0; i < n; ++i)
+        if (!spec_.passes[i].graded.empty()) need(i);
+    while (!work.empty()) {
+        const std::size_t i = work.back();
+        work.pop_back();
+        const PassSpec& pass = spec_.passes[i];
+        for (std::size_t j = 0; j < n; ++j) {
+            const std::string& written = spec_.passes[j].target;
+            const bool read = std::any_of(pass.inputs.begin(), pass.inputs.end(), [&](const PassInput& in) {
+                return in.source == InputSource::Target && in.target == written;
+            });
+            if (read || (j < i && written == pass.target)) need(j);
+        }
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        if (!needed_[i] && timingsEnabled())
+            recordTiming("pass_skipped", spec_.id, spec_.passes[i].name, 0.0);
 }
 
 bool LabRunner::createTargets() {
@@ -1035,11 +1080,16 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
     for (std::size_t i = 0; i < spec_.passes.size();) {
         const PassSpec& pass = spec_.passes[i];
         if (pass.loop < 0) {
-            if (!runPass(i, 0, true, ctx) || !checkLoopGuard(pass, scene_spec.name)) return false;
+            if (needed_[i] && (!runPass(i, 0, true, ctx) || !checkLoopGuard(pass, scene_spec.name)))
+                return false;
             ++i;
             continue;
         }
         const LoopSpec& loop = spec_.loops[static_cast<std::size_t>(pass.loop)];
+        if (!needed_[i]) {
+            i = loop.last + 1;
+            continue;
+        }
         const auto it = scene_spec.repeats.find(loop.declared_by);
         const int count = it != scene_spec.repeats.end() ? it->second : loop.count;
         for (int k = 0; k < count; ++k)
