@@ -63,6 +63,14 @@ void filterEvenOddEven(const FilterTaps& taps, int begin, int end, const Kernel&
                                    positiveHalf(third), out_first, out_odd, out_third);
 }
 
+void filterEvenEvenOddEven(const FilterTaps& taps, int begin, int end, const Kernel& first,
+                           const Kernel& second, const Kernel& odd, const Kernel& fourth, float* out_first,
+                           float* out_second, float* out_odd, float* out_fourth) {
+    kernels().filter_even_even_odd_even(taps, first.radius, begin, end, positiveHalf(first),
+                                        positiveHalf(second), positiveHalf(odd), positiveHalf(fourth),
+                                        out_first, out_second, out_odd, out_fourth);
+}
+
 void filterEvenRows2(const FilterTaps& taps, int begin, int end, const Kernel& kernel, float* out0,
                      float* out1) {
     kernels().filter_even_rows2(taps, kernel.radius, begin, end, positiveHalf(kernel), out0, out1);

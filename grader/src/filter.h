@@ -110,6 +110,9 @@ void filterOddEven(const FilterTaps& taps, int begin, int end, const Kernel& odd
                    float* out_odd, float* out_even);
 void filterEvenOddEven(const FilterTaps& taps, int begin, int end, const Kernel& first, const Kernel& odd,
                        const Kernel& third, float* out_first, float* out_odd, float* out_third);
+void filterEvenEvenOddEven(const FilterTaps& taps, int begin, int end, const Kernel& first,
+                           const Kernel& second, const Kernel& odd, const Kernel& fourth, float* out_first,
+                           float* out_second, float* out_odd, float* out_fourth);
 
 // Vertical passes for output rows y and y + 1 at once (taps from RowRing::taps).
 void filterEvenRows2(const FilterTaps& taps, int begin, int end, const Kernel& kernel, float* out0,

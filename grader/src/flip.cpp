@@ -5,10 +5,13 @@
 // mapping), which LDR renders do not need.
 //
 // Data flow, per image, all float and planar:
-//   1. each input row -> YCxCz and luminance (sRGB decode, matrix, linearised Lab axes);
+//   1. each input row -> Cx, Cz and luminance Y / Y_white (sRGB decode, matrix, linearised Lab
+//      axes). The Y channel of YCxCz is 116 luminance - 16, and the achromatic filter sums to
+//      1, so the luminance is filtered in its place and mapped back after;
 //   2. horizontal passes of the contrast sensitivity filters (the blue-yellow one is a sum of
 //      two Gaussians, so two separable passes) and of the feature filters (Gaussian, first and
-//      second derivative) into seven rings of rows (filter.h);
+//      second derivative) into seven rings of rows (filter.h); the achromatic and the feature
+//      filters share one pass over the luminance;
 //   3. per output row: vertical passes into row buffers, then colour error, feature error and
 //      the combined error for that row.
 // Steps 1 and 2 run for an image row just before step 3 first needs it, so no whole plane is
@@ -78,6 +81,9 @@ double hyab(const Lab& p, const Lab& q) {
 struct Filters {
     detail::Kernel achromatic, red_green, blue_yellow1, blue_yellow2;  // spatial (CSF)
     detail::Kernel gauss, first_derivative, second_derivative;         // features
+    // The achromatic and the three feature kernels zero-padded to one radius, for the shared
+    // horizontal pass over the luminance.
+    detail::Kernel luminance_achromatic, luminance_gauss, luminance_first, luminance_second;
     int pad_radius = 0;  // the largest radius: one padded row serves every kernel
 };
 
@@ -107,6 +113,17 @@ void trimNegligibleTaps(detail::Kernel& kernel) {
     kernel.taps.erase(kernel.taps.end() - drop, kernel.taps.end());
     kernel.taps.erase(kernel.taps.begin(), kernel.taps.begin() + drop);
     kernel.radius -= drop;
+}
+
+// The kernel with zero taps added on both sides up to `radius` (not below its own).
+detail::Kernel zeroPadded(const detail::Kernel& kernel, int radius) {
+    detail::Kernel padded;
+    padded.radius = std::max(radius, kernel.radius);
+    const int extra = padded.radius - kernel.radius;
+    padded.taps.assign(static_cast<std::size_t>(extra), 0.0f);
+    padded.taps.insert(padded.taps.end(), kernel.taps.begin(), kernel.taps.end());
+    padded.taps.insert(padded.taps.end(), static_cast<std::size_t>(extra), 0.0f);
+    return padded;
 }
 
 Filters makeFilters(float ppd) {
@@ -169,6 +186,11 @@ Filters makeFilters(float ppd) {
     f.first_derivative = makeKernel(dg, 1.0 / dg_positive);
     f.second_derivative = makeKernel(ddg, 1.0);
     f.pad_radius = std::max(radius, feature_radius);
+    const int shared = std::max(f.achromatic.radius, feature_radius);
+    f.luminance_achromatic = zeroPadded(f.achromatic, shared);
+    f.luminance_gauss = zeroPadded(f.gauss, shared);
+    f.luminance_first = zeroPadded(f.first_derivative, shared);
+    f.luminance_second = zeroPadded(f.second_derivative, shared);
     return f;
 }
 
@@ -284,12 +306,12 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
                                                        kPt};
 
     // Buffers, in one allocation: per image seven rings of horizontally filtered rows
-    // (filter.h), the padded rows of the four channels being filtered, the deinterleaved sRGB
-    // row, per image eight vertically filtered rows, and the error row. Rows are padded to
-    // whole vector groups (kernels.h) and everything is zeroed, so the groups past the end of
+    // (filter.h; kY holds the filtered luminance, not Y), the padded rows of the three channels being
+    // filtered, the deinterleaved sRGB row, per image eight vertically filtered rows, and the error row. Rows
+    // are padded to whole vector groups (kernels.h) and everything is zeroed, so the groups past the end of
     // a row compute harmless values.
     enum Plane { kY, kCx, kBy1, kBy2, kGauss, kFirst, kSecond, kPlaneCount };
-    enum Channel { kChannelY, kChannelCx, kChannelCz, kChannelLuminance, kChannelCount };
+    enum Channel { kChannelCx, kChannelCz, kChannelLuminance, kChannelCount };
     enum Output { kOutY, kOutCx, kOutBy1, kOutBy2, kOutDx, kOutDdx, kOutDy, kOutDdy, kOutputCount };
     const detail::RowRing ring(height, pad, detail::Border::ClampToEdge);
     const std::size_t ring_stride = detail::ringStride(width);
@@ -333,23 +355,22 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
             const int channels = image.channels;
             const float* row = &image.pixels[static_cast<std::size_t>(y) * width * channels];
             kernels.deinterleave_rgb(row, channels, width, srgb_row[0], srgb_row[1], srgb_row[2]);
-            kernels.flip_colour_row(srgb_row, width, padded[kChannelY] + pad, padded[kChannelCx] + pad,
-                                    padded[kChannelCz] + pad, padded[kChannelLuminance] + pad);
+            kernels.flip_colour_row(srgb_row, width, padded[kChannelCx] + pad, padded[kChannelCz] + pad,
+                                    padded[kChannelLuminance] + pad);
             for (float* p : padded) detail::fillBorders(p, width, pad, detail::Border::ClampToEdge);
 
             float* const* out = rings[which];
             auto taps = [&](Channel channel, const detail::Kernel& kernel) {
                 return detail::horizontalTaps(padded[channel], pad, kernel.radius, columns);
             };
-            detail::filterEven(taps(kChannelY, filters.achromatic), 0, width, filters.achromatic,
-                               out[kY] + slot);
             detail::filterEven(taps(kChannelCx, filters.red_green), 0, width, filters.red_green,
                                out[kCx] + slot);
             detail::filterEvenEven(taps(kChannelCz, filters.blue_yellow1), 0, width, filters.blue_yellow1,
                                    filters.blue_yellow2, out[kBy1] + slot, out[kBy2] + slot);
-            detail::filterEvenOddEven(taps(kChannelLuminance, filters.gauss), 0, width, filters.gauss,
-                                      filters.first_derivative, filters.second_derivative, out[kGauss] + slot,
-                                      out[kFirst] + slot, out[kSecond] + slot);
+            detail::filterEvenEvenOddEven(taps(kChannelLuminance, filters.luminance_gauss), 0, width,
+                                          filters.luminance_achromatic, filters.luminance_gauss,
+                                          filters.luminance_first, filters.luminance_second, out[kY] + slot,
+                                          out[kGauss] + slot, out[kFirst] + slot, out[kSecond] + slot);
         }
     };
 

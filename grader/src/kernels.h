@@ -56,6 +56,10 @@ struct KernelTable {
     void (*filter_even_odd_even)(const FilterTaps& taps, int radius, int begin, int end, const float* half_a,
                                  const float* half_odd, const float* half_c, float* out_a, float* out_odd,
                                  float* out_c);
+    void (*filter_even_even_odd_even)(const FilterTaps& taps, int radius, int begin, int end,
+                                      const float* half_a, const float* half_b, const float* half_odd,
+                                      const float* half_d, float* out_a, float* out_b, float* out_odd,
+                                      float* out_d);
 
     // The same single even pass in double precision (SSIM, see ssim.cpp).
     void (*filter_even_f64)(const FilterTapsF64& taps, int radius, int begin, int end, const double* half,
@@ -111,14 +115,15 @@ struct KernelTable {
     int (*collect_range)(const float* values, const unsigned char* mask, int begin, int end, float low,
                          float high, float* out);
 
-    // FLIP, step 1: sRGB rows (R, G, B; any values, clamped to [0,1] here) to the YCxCz
-    // channels and the luminance Y / Y_white. Writes whole vector groups.
-    void (*flip_colour_row)(const float* const* srgb, int width, float* y, float* cx, float* cz,
-                            float* luminance);
+    // FLIP, step 1: sRGB rows (R, G, B; any values, clamped to [0,1] here) to the Cx and Cz
+    // channels of YCxCz and the luminance Y / Y_white (whose Y channel is 116 luminance - 16).
+    // Writes whole vector groups.
+    void (*flip_colour_row)(const float* const* srgb, int width, float* cx, float* cz, float* luminance);
 
     // FLIP, step 3: the per-pixel error at x in [begin, end) of one row. `reference` and `test`
-    // each point at eight filtered rows: Y, Cx, Cz part 1, Cz part 2, dx, ddx, dy, ddy of the
-    // luminance. `begin` must be a multiple of kMaxLanes.
+    // each point at eight filtered rows: the luminance through the achromatic filter (the Y
+    // channel's (Y + 16) / 116), Cx, Cz part 1, Cz part 2, dx, ddx, dy, ddy of the luminance. `begin` must be
+    // a multiple of kMaxLanes.
     void (*flip_error_row)(const float* const* reference, const float* const* test, int begin, int end,
                            const FlipColourConstants& constants, float* error);
 };

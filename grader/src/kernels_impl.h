@@ -223,7 +223,7 @@ inline void mirroredBlock(const BasicFilterTaps<T>& taps, int radius, const T* c
     // Two sets of accumulators, for odd and even k, halve the chain of dependent adds.
     V acc[2][kKernels][Vectors];
     const T* centre_row = base + mid[0] * stride;
-#pragma GCC unroll 3
+#pragma GCC unroll 4
     for (int i = 0; i < kKernels; ++i) {
 #pragma GCC unroll 4
         for (int v = 0; v < Vectors; ++v) {
@@ -241,7 +241,7 @@ inline void mirroredBlock(const BasicFilterTaps<T>& taps, int radius, const T* c
             const V h = loadVector<V>(high + kStep * v);
             const V sum = h + l;
             const V difference = h - l;
-#pragma GCC unroll 3
+#pragma GCC unroll 4
             for (int i = 0; i < kKernels; ++i) {
                 acc[set][i][v] =
                     mulAdd(broadcast<V>(weights[i][k]), kOdd[i] ? difference : sum, acc[set][i][v]);
@@ -254,7 +254,7 @@ inline void mirroredBlock(const BasicFilterTaps<T>& taps, int radius, const T* c
         step(k + 1, 1);
     }
     if (k <= radius) step(k, 0);
-#pragma GCC unroll 3
+#pragma GCC unroll 4
     for (int i = 0; i < kKernels; ++i) {
 #pragma GCC unroll 4
         for (int v = 0; v < Vectors; ++v) storeVector(out[i] + x + kStep * v, acc[0][i][v] + acc[1][i][v]);
@@ -270,7 +270,7 @@ void mirroredPass(const BasicFilterTaps<T>& taps, int radius, int begin, int end
     constexpr int kStep = VectorOf<T>::lanes;
     constexpr int kKernels = sizeof...(Odd);
     constexpr bool kOdd[kKernels] = {Odd...};
-    constexpr int kVectors = kKernels == 1 ? 4 : 2;
+    constexpr int kVectors = kKernels == 1 ? 4 : (kKernels >= 4 ? 1 : 2);
     int x = begin;
     for (; x + kStep * kVectors <= end; x += kStep * kVectors) {
         mirroredBlock<T, kVectors, Odd...>(taps, radius, weights, out, x);
@@ -435,6 +435,14 @@ void filterEvenOddEven(const FilterTaps& taps, int radius, int begin, int end, c
     const float* weights[] = {half_a, half_odd, half_c};
     float* outputs[] = {out_a, out_odd, out_c};
     mirroredPass<float, false, true, false>(taps, radius, begin, end, weights, outputs);
+}
+
+void filterEvenEvenOddEven(const FilterTaps& taps, int radius, int begin, int end, const float* half_a,
+                           const float* half_b, const float* half_odd, const float* half_d, float* out_a,
+                           float* out_b, float* out_odd, float* out_d) {
+    const float* weights[] = {half_a, half_b, half_odd, half_d};
+    float* outputs[] = {out_a, out_b, out_odd, out_d};
+    mirroredPass<float, false, false, true, false>(taps, radius, begin, end, weights, outputs);
 }
 
 // ---- row helpers -------------------------------------------------------------------------
@@ -760,7 +768,7 @@ inline F srgbToLinear(F v) {
     return clamped <= splat(kSrgbLinearLimit) ? clamped * (1.0f / 12.92f) : power * scale;
 }
 
-void flipColourRow(const float* const* srgb, int width, float* y, float* cx, float* cz, float* luminance) {
+void flipColourRow(const float* const* srgb, int width, float* cx, float* cz, float* luminance) {
     for (int x = 0; x < width; x += kLanes) {
         const F linear[3] = {srgbToLinear(load(srgb[0] + x)), srgbToLinear(load(srgb[1] + x)),
                              srgbToLinear(load(srgb[2] + x))};
@@ -772,8 +780,8 @@ void flipColourRow(const float* const* srgb, int width, float* y, float* cx, flo
                    kInvWhite[i];
         }
         // YCxCz (FLIP paper, colour pipeline): CIELab without the cube root, linear in XYZ and so
-        // fit for linear filtering. The feature detectors see luminance, Y / Y_white.
-        store(y + x, 116.0f * n[1] - 16.0f);
+        // fit for linear filtering. Its Y channel, 116 n[1] - 16, is affine in the luminance
+        // n[1] = Y / Y_white, which the feature detectors see: the luminance is filtered for both.
         store(cx + x, 500.0f * (n[0] - n[1]));
         store(cz + x, 200.0f * (n[1] - n[2]));
         store(luminance + x, n[1]);
@@ -786,10 +794,10 @@ struct HuntLab {
     F l, a, b;
 };
 
-// Filtered YCxCz -> XYZ -> linear RGB, clamped to the gamut (filtering can leave it) -> XYZ ->
-// CIELab -> Hunt-adjusted a, b (colourfulness falls with lightness: a, b scaled by 0.01 L).
-inline HuntLab filteredToHuntLab(F y_channel, F cx, F cz) {
-    const F ny = (y_channel + 16.0f) * (1.0f / 116.0f);
+// Filtered YCxCz (its Y as the luminance (Y + 16) / 116) -> XYZ -> linear RGB, clamped to the gamut
+// (filtering can leave it) -> XYZ -> CIELab -> Hunt-adjusted a, b (colourfulness falls with lightness: a, b
+// scaled by 0.01 L).
+inline HuntLab filteredToHuntLab(F ny, F cx, F cz) {
     const F xyz[3] = {(ny + cx * (1.0f / 500.0f)) * kWhite[0], ny, (ny - cz * (1.0f / 200.0f)) * kWhite[2]};
     F rgb[3];
 #pragma GCC unroll 3
@@ -879,6 +887,7 @@ KernelTable makeTable() {
     table.filter_even_even = filterEvenEven;
     table.filter_odd_even = filterOddEven;
     table.filter_even_odd_even = filterEvenOddEven;
+    table.filter_even_even_odd_even = filterEvenEvenOddEven;
     table.filter_even_f64 = filterEvenF64;
     table.filter_even_rows2 = filterEvenRows2;
     table.filter_odd_even_rows2 = filterOddEvenRows2;

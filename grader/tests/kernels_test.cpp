@@ -166,8 +166,8 @@ TEST(Kernels, ColourRowDecodesSrgbLikeTheFormula) {
     std::copy(values.begin(), values.end(), grey.begin());
     const float* rows[3] = {grey.data(), grey.data(), grey.data()};
     for (const detail::KernelTable* table : builds()) {
-        std::vector<float> y(padded), cx(padded), cz(padded), luminance(padded);
-        table->flip_colour_row(rows, width, y.data(), cx.data(), cz.data(), luminance.data());
+        std::vector<float> cx(padded), cz(padded), luminance(padded);
+        table->flip_colour_row(rows, width, cx.data(), cz.data(), luminance.data());
         double worst = 0.0;
         for (int i = 0; i < width; ++i) {
             const double v = std::isnan(values[i]) ? 0.0 : std::min(1.0, std::max(0.0, double(values[i])));
