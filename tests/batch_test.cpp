@@ -248,8 +248,7 @@ TEST(BatchArchive, StopsZipBombsAndNamesBrokenZips) {
     EXPECT_EQ(x.status, "too_large");
     EXPECT_NE(x.message.find("zip bomb"), std::string::npos) << x.message;
 
-    writeFile(dir / "garbage.zip",
-              std::string("PK\x03\x04 not really a zip at all", 30) + std::string(200, 'x'));
+    writeFile(dir / "garbage.zip", std::string("PK\x03\x04 not really a zip at all") + std::string(200, 'x'));
     x = batch::extractZip((dir / "garbage.zip").string(), (dir / "o3").string());
     EXPECT_EQ(x.status, "bad_archive") << x.message;
     writeFile(dir / "short.zip", "PK");
