@@ -41,6 +41,7 @@
 #include "shaderlab/grading.h"
 #include "shaderlab/lab_catalog.h"
 #include "shaderlab/lab_spec.h"
+#include "shaderlab/sanitizer.h"
 
 namespace fs = std::filesystem;
 
@@ -121,7 +122,7 @@ struct Spawned {
 };
 
 // Starts `argv` as a worker: its own process group, killed when this process dies, stdin from
-// /dev/null, stdout and stderr into `log`, address space limited to `memory` bytes.
+// /dev/null, stdout and stderr into `log`, address space limited to `memory` bytes (0: unlimited).
 Spawned spawnWorker(const std::vector<std::string>& argv, const std::string& log, std::size_t memory) {
     std::vector<char*> cargv;
     for (const std::string& a : argv) cargv.push_back(const_cast<char*>(a.c_str()));
@@ -135,13 +136,11 @@ Spawned spawnWorker(const std::vector<std::string>& argv, const std::string& log
         prctl(PR_SET_PDEATHSIG, SIGKILL);
         if (getppid() != parent) _exit(127);  // the batch died before the line above
         for (int sig : {SIGINT, SIGTERM, SIGHUP}) signal(sig, SIG_DFL);
-#if !defined(__SANITIZE_ADDRESS__)
-        rlimit as{};
-        as.rlim_cur = as.rlim_max = memory;
-        setrlimit(RLIMIT_AS, &as);
-#else
-        (void)memory;
-#endif
+        if (memory > 0) {
+            rlimit as{};
+            as.rlim_cur = as.rlim_max = memory;
+            setrlimit(RLIMIT_AS, &as);
+        }
         rlimit core{};
         setrlimit(RLIMIT_CORE, &core);
         const int in = open("/dev/null", O_RDONLY);
@@ -186,7 +185,9 @@ std::string lastLogLine(const std::string& log) {
 
 // The GL renderer a worker would see, for the reference cache key: `shaderlab info`, in a child.
 std::string probeRenderer(const std::string& exe, const std::string& backend, const fs::path& log) {
-    const Spawned s = spawnWorker({exe, "info", "--backend", backend}, log.string(), std::size_t(8) << 30);
+    // No address-space cap under AddressSanitizer (see runBatch).
+    const Spawned s = spawnWorker({exe, "info", "--backend", backend}, log.string(),
+                                  SHADERLAB_ASAN ? 0 : std::size_t(8) << 30);
     if (s.pid < 0) return {};
     int wstatus = 0;
     while (waitpid(s.pid, &wstatus, 0) < 0 && errno == EINTR) {
@@ -809,9 +810,12 @@ int runBatch(const BatchArgs& args) {
             job.log = log;
             // The render child below the worker watches its resident memory against `memory` and
             // caps its address space at 4 GiB more (isolated_render.cpp); the worker gets the same cap.
-            // SHADERLAB_WORKER_ADDRESS_SPACE (a size such as 64M) replaces that cap: for machines
-            // whose driver reserves more, and for the test of a worker that dies.
-            std::size_t worker_as = memory + (std::size_t(4) << 30);
+            // Not under AddressSanitizer, whose shadow memory reserves terabytes of address space
+            // (the render child's resident-memory watch still holds there).
+            // SHADERLAB_WORKER_ADDRESS_SPACE (a size such as 64M) replaces that cap, also under
+            // ASan: for machines whose driver reserves more, and for the test of a worker that dies
+            // (an ASan worker under such a cap dies at its start, which that test wants).
+            std::size_t worker_as = SHADERLAB_ASAN ? 0 : memory + (std::size_t(4) << 30);
             if (const char* env = std::getenv("SHADERLAB_WORKER_ADDRESS_SPACE"))
                 parseMemory(env, &worker_as, 1);
             const Spawned s = spawnWorker(job.argv, log, worker_as);

@@ -16,12 +16,14 @@
 // clang-format on
 
 #include <dlfcn.h>
+#include <link.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <vector>
 
+#include "shaderlab/sanitizer.h"
 #include "shaderlab/timings.h"
 
 namespace shaderlab {
@@ -118,6 +120,29 @@ struct EglApi {
         return a;
     }
 };
+
+#if SHADERLAB_ASAN
+// LeakSanitizer reports at exit, after libEGL_mesa (or GLFW's libGL) has closed the DRI driver
+// it loaded (swrast_dri.so) at eglTerminate, glfwTerminate or in a destructor. A leak allocated
+// inside that driver then has only "<unknown module>" frames (the driver has no frame pointers,
+// so ASan's fast unwinder stops after one frame), and tests/asan/lsan.supp, which suppresses the
+// driver's leaks by library name, cannot match it. So every library loaded by now is marked
+// RTLD_NODELETE (with RTLD_NOLOAD: only those already there): it stays mapped until exit and LSan
+// names it; a leak of ours is still reported. Slow unwinding (ASAN_OPTIONS
+// fast_unwind_on_malloc=0) also reaches a named frame, in libEGL_mesa, but slows every malloc;
+// suppressing "<unknown module>" would hide our own leaks in any library that was unloaded.
+void keepLoadedLibrariesMapped() {
+    std::vector<std::string> paths;  // collected first: no dlopen under dl_iterate_phdr's lock
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void* out) {
+            if (info->dlpi_name && info->dlpi_name[0] == '/')
+                static_cast<std::vector<std::string>*>(out)->push_back(info->dlpi_name);
+            return 0;
+        },
+        &paths);
+    for (const std::string& path : paths) dlopen(path.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+}
+#endif
 
 constexpr int kMinMajor = 3, kMinMinor = 3;
 
@@ -293,6 +318,10 @@ bool parseBackend(const std::string& name, Backend* out) {
 const char* backendName(Backend backend) { return backend == Backend::OSMesa ? "osmesa" : "egl"; }
 
 bool loadGl(GetProcFn get_proc, GlInfo* info, std::string* error) {
+#if SHADERLAB_ASAN
+    // Every context (headless or the viewer's window) is current by now: its driver is loaded.
+    keepLoadedLibrariesMapped();
+#endif
     // gladLoadGL parses GL_VERSION itself and returns it; 0 means not even glGetString works.
     const int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(get_proc));
     if (!version || !glad_glGetString) {

@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "grader/untrusted_text.h"
+#include "shaderlab/sanitizer.h"
 
 using json = nlohmann::json;
 
@@ -98,10 +99,10 @@ bool readAt(int fd, void* data, std::size_t n, std::uint64_t offset) {
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent_pid) _exit(1);
     for (int sig : {SIGTERM, SIGINT, SIGHUP}) signal(sig, SIG_DFL);
-#if !defined(__SANITIZE_ADDRESS__)
-    // (AddressSanitizer maps terabytes of shadow memory up front, so a sanitizer build goes
-    // without the address-space limit.) The parent watches resident memory; this is the backstop
-    // for an allocation faster than its polling.
+#if !SHADERLAB_ASAN
+    // The parent watches resident memory; this is the backstop for an allocation faster than its
+    // polling. Not under AddressSanitizer: it reserves terabytes of address space for its shadow
+    // memory up front, so under the cap its allocations would fail; the parent's watch still holds.
     rlimit as{};
     as.rlim_cur = as.rlim_max = limits.memory_bytes + kAddressSpaceHeadroom;
     setrlimit(RLIMIT_AS, &as);
