@@ -170,10 +170,10 @@ SsimResult computeSsim(const Image& reference, const Image& test, const SsimConf
     // lanes instead of four): a float variance E[d^2] - E[d]^2 is off by about 1e-6 of the
     // largest d^2 in the window, so with |d| <= 1/16 by at most ~4e-9, which moves SSIM by at
     // most ~4e-9 / C2 = 5e-6 (measured 1.2e-6 per pixel for a flat offset of 0.0624, against
-    // 1.3e-7 all in double: tests/ssim_test.cpp). Where a window holds a
-    // row with a larger difference, its vertical pass runs in double, the small rows widened
-    // (exactly) into the double ring first. Rendered images mostly agree with their references
-    // to within a few levels, so most windows take the float passes.
+    // 1.3e-7 all in double: tests/ssim_test.cpp). Where a window holds a row with a larger
+    // difference, its vertical pass runs in double, the small rows widened (exactly) into the
+    // double ring first. Rendered images mostly agree with their references to within a few
+    // levels, so most windows take the float passes.
     constexpr float kSmallDifference = 1.0f / 16.0f;
     MomentPair<float> small_differences(width, radius, ring);
     enum SlotState : std::uint8_t { kDouble, kFloat, kFloatAndDouble };
