@@ -674,8 +674,8 @@ void widenRow(const float* in, int n, double* out) {
     for (; i < n; ++i) out[i] = in[i];
 }
 
-void ssimRowOf(const double* const* s_moments, const double* const* d_moments, int begin, int end, double c1,
-               double c2, float* out) {
+void ssimRow(const double* const* s_moments, const double* const* d_moments, int begin, int end, double c1,
+             double c2, float* out) {
     for (int x = begin; x < end; x += kDoubleLanes) {
         const D ms = loadVector<D>(s_moments[0] + x);
         const D md = loadVector<D>(d_moments[0] + x);
@@ -690,11 +690,6 @@ void ssimRowOf(const double* const* s_moments, const double* const* d_moments, i
         storeVector(out + x,
                     __builtin_convertvector(numerator, HalfF) / __builtin_convertvector(denominator, HalfF));
     }
-}
-
-void ssimRow(const double* const* s_moments, const double* const* d_moments, int begin, int end, double c1,
-             double c2, float* out) {
-    ssimRowOf(s_moments, d_moments, begin, end, c1, c2, out);
 }
 
 // One vector from two halves (in registers: storing the halves and loading the whole would
