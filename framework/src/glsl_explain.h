@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "shaderlab/shader_program.h"
+#include "shaderlab/diagnostic.h"
 
 namespace shaderlab {
 
