@@ -14,10 +14,10 @@
 #include <cmath>
 #include <cstdint>
 
-#include "grader/compare.h"
-#include "grader/image.h"
-#include "grader/metrics.h"
-#include "grader/scoring.h"
+#include "grader/metrics/compare.h"
+#include "grader/metrics/image.h"
+#include "grader/metrics/metrics.h"
+#include "grader/metrics/scoring.h"
 
 namespace {
 

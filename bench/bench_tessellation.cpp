@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "grader/metrics.h"
-#include "shaderlab/gl_context.h"
-#include "shaderlab/lab_spec.h"
-#include "shaderlab/renderer.h"
+#include "grader/metrics/metrics.h"
+#include "shaderlab/gl/gl_context.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/render/renderer.h"
 
 namespace fs = std::filesystem;
 

@@ -11,7 +11,7 @@ What it measures (all on this machine, the grade on llvmpipe with its default th
     as whole processes, with the dynamic loader's statistics;
   * grading each lab of reference_solutions on its own, against the stored goldens and against
     the reference rendered anew, broken down by phase through SHADERLAB_TIMINGS
-    (framework/include/shaderlab/timings.h);
+    (framework/base/include/shaderlab/base/timings.h);
   * bench_metrics (Google Benchmark): the metrics at 512x512 and over image sizes;
   * bench_tessellation: sphere tessellation against a double-precision ray cast;
   * bloom_kernel.py: blur taps and pyramid levels against an exact Gaussian;
@@ -486,7 +486,7 @@ def write_page(res, figs, elapsed_s, command):
     L.append("## Process start and `compare`\n")
     L.append("`shaderlab --help` (process start, argument parsing, exit): **%.1f ms**. The program links "
              "%d shared libraries%s; OSMesa and EGL are opened with `dlopen()` only when a command creates "
-             "a context (`framework/src/gl_context.cpp`), so `compare` never loads libLLVM. Loader statistics "
+             "a context (`framework/gl/src/gl_context.cpp`), so `compare` never loads libLLVM. Loader statistics "
              "for `compare` (`LD_DEBUG=statistics`): %s relocations and %s cycles in the dynamic loader, against "
              "%s relocations and %s cycles with libOSMesa loaded as it used to be. The loader's share is the "
              "smaller part of the old cost: most of it was libLLVM's own start-up (its static constructors "
@@ -505,7 +505,7 @@ def write_page(res, figs, elapsed_s, command):
     # Grade breakdown
     L.append("## Where grading time goes\n")
     L.append("`shaderlab grade reference_solutions --no-reference --lab <lab>`, one process per lab, "
-             "phases recorded through `SHADERLAB_TIMINGS=<file>` (see `framework/include/shaderlab/timings.h`). "
+             "phases recorded through `SHADERLAB_TIMINGS=<file>` (see `framework/base/include/shaderlab/base/timings.h`). "
              "*Drawing* is each scene's render time less its scene loading and read-back; it includes "
              "llvmpipe's JIT compilation of shader variants at their first draw, which Mesa does lazily, "
              "so *shader compilation* is only the GLSL front end and linking. *Render child* is the isolated "
@@ -536,23 +536,23 @@ def write_page(res, figs, elapsed_s, command):
     L.append("| `compare` start-up, 8x8 | %.1f ms (OSMesa preloaded) | %.1f ms | OSMesa and EGL opened with dlopen() on first context |" %
              (s["compare"][0]["with_osmesa_preloaded_ms"], s["compare"][0]["ms"]))
     if "BM_JudgeImageNearlyIdentical" in mt and "BM_JudgeImageIdentical" in mt:
-        L.append("| judging a 512x512 image bit-identical to the reference | %.2f ms (one float step apart: full path) | %.2f ms | SSIM, FLIP and the shift-tolerant compare return at once for equal inputs (`grader/src/image_access.h`) |" %
+        L.append("| judging a 512x512 image bit-identical to the reference | %.2f ms (one float step apart: full path) | %.2f ms | SSIM, FLIP and the shift-tolerant compare return at once for equal inputs (`grader/metrics/src/image_access.h`) |" %
                  (mt["BM_JudgeImageNearlyIdentical"], mt["BM_JudgeImageIdentical"]))
     hl = res.get("hints_load", {})
     if hl.get("labs"):
-        L.append("| known-mistake pictures of a passing lab | %.0f ms per lab (read for every lab) | 0 ms | read at the first failing image (`framework/src/grading.cpp`); the cost is measured on the starter code, which fails |" %
+        L.append("| known-mistake pictures of a passing lab | %.0f ms per lab (read for every lab) | 0 ms | read at the first failing image (`framework/grading/src/grading.cpp`); the cost is measured on the starter code, which fails |" %
                  (hl["total_ms"] / hl["labs"]))
-    L.append("| the reference picture of each graded image, grading against goldens | encoded again from the golden's pixels | the golden PNG copied | `copyOrWriteImage` in `framework/src/grading.cpp`: one PNG encode of the four or five per image saved (part of *report pictures* above) |")
+    L.append("| the reference picture of each graded image, grading against goldens | encoded again from the golden's pixels | the golden PNG copied | `copyOrWriteImage` in `framework/grading/src/grading.cpp`: one PNG encode of the four or five per image saved (part of *report pictures* above) |")
     comp = sum(x["compiles"] for x in g)
     L.append("| shader compilation | - | %d program builds for %d scenes | programs are built once per lab (per vertex, fragment and attachment layout) and shared by every scene and pass; already so before this page |" %
              (comp, sum(x["scenes"] for x in g)))
     un = res["unneeded"]
     listed = ", ".join("%s: %s" % (k, ", ".join(v)) for k, v in un.items() if v) or "none in any lab"
-    L.append("| passes no graded image depends on | run | not run when grading (`render --all-passes` and the viewer run every pass); in the bundled labs: %s | `LabRunner::findNeededPasses` in `framework/src/renderer.cpp`; test `LabFeatures.PassNoGradedImageDependsOnIsNotRun` |" % listed)
+    L.append("| passes no graded image depends on | run | not run when grading (`render --all-passes` and the viewer run every pass); in the bundled labs: %s | `LabRunner::findNeededPasses` in `framework/render/src/renderer.cpp`; test `LabFeatures.PassNoGradedImageDependsOnIsNotRun` |" % listed)
     L.append("| reference images | %.0f ms per lab (rendering the reference) | %.0f ms per lab (`--no-reference`: stored goldens) | the goldens are the reference images kept; `shaderlab goldens` refreshes them |" %
              (mean_lab_ref, mean_lab))
-    L.append("| depth buffers of targets no pass tests, writes or grades depth in | allocated and cleared every scene | not allocated | `LabRunner::createTargets` in `framework/src/renderer.cpp`. No bundled lab has such a target (their full-screen targets say `\"depth\": \"none\"`); with those lines deleted from 05 and 06, rendering both took 1.8 MB less peak memory and drew identical images (measured by hand on 2026-11-25, not by this script) |")
-    L.append("| vertex attributes a program does not read | - | TANGENT, COLOR_0 and TEXCOORD_1 uploaded on the first draw by a program that declares them | `bindOptionalAttributes` in `framework/src/renderer.cpp`; positions, normals and TEXCOORD_0 are always uploaded |\n")
+    L.append("| depth buffers of targets no pass tests, writes or grades depth in | allocated and cleared every scene | not allocated | `LabRunner::createTargets` in `framework/render/src/renderer.cpp`. No bundled lab has such a target (their full-screen targets say `\"depth\": \"none\"`); with those lines deleted from 05 and 06, rendering both took 1.8 MB less peak memory and drew identical images (measured by hand on 2026-11-25, not by this script) |")
+    L.append("| vertex attributes a program does not read | - | TANGENT, COLOR_0 and TEXCOORD_1 uploaded on the first draw by a program that declares them | `bindOptionalAttributes` in `framework/render/src/renderer.cpp`; positions, normals and TEXCOORD_0 are always uploaded |\n")
 
     # Metrics
     L.append("## Metric time against image size\n")
@@ -667,7 +667,7 @@ def write_page(res, figs, elapsed_s, command):
 
     L.append("## Numerical stability\n")
     L.append("Pinned by tests rather than measured here (`tests/stability_test.cpp`, "
-             "`grader/tests/metric_stress_test.cpp`; they run with the suite):\n")
+             "`grader/metrics/tests/metric_stress_test.cpp`; they run with the suite):\n")
     L.append("* 01-phong's reference draws the same sphere scaled by 1e-3 to 1e4 (camera, light and planes "
              "scaled with it) within 2/255 of scale 1 and with the same verdict; near/far planes from 0.5/20 to "
              "1e-4/1e4 (ratio 1e8) keep the torus knot's verdict with the 32-bit float depth buffer.")

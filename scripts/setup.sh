@@ -9,7 +9,7 @@ packages=(
   libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
   libglfw3-dev libglm-dev nlohmann-json3-dev libtinygltf-dev libstb-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev python3-glad clang-format libvalijson-dev libpng-dev
-  libdraco-dev libmeshoptimizer-dev  # compressed glTF meshes (framework/src/gltf_loader.cpp)
+  libdraco-dev libmeshoptimizer-dev  # compressed glTF meshes (framework/scene/src/gltf_loader.cpp)
   libarchive-dev libxxhash-dev  # shaderlab batch: submitted zips, content hashes
   chromium tidy  # tests/report_page_test.cpp renders and validates report.html (skipped without them)
   gnuplot-nox    # scripts/bench.sh draws the plots of docs/performance.md

@@ -2,7 +2,7 @@
 // unpacked safely or refused with one clear status, summaries, resuming after SIGKILL with no
 // process left behind, identical work graded once, shards merged into the same summary.
 // The batches grade 01-phong only, so that every test here stays within a few seconds of work.
-#include "shaderlab/batch.h"
+#include "shaderlab/batch/batch.h"
 
 #include <archive.h>
 #include <archive_entry.h>

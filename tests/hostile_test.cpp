@@ -21,8 +21,8 @@
 #include <sstream>
 #include <thread>
 
-#include "shaderlab/sanitizer.h"
-#include "shaderlab/shader_program.h"
+#include "shaderlab/base/sanitizer.h"
+#include "shaderlab/render/shader_program.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;

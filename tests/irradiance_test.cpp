@@ -19,9 +19,9 @@
 
 #include "../framework/tools/analytic_sky.h"
 #include "gl_test_support.h"
-#include "grader/image.h"
-#include "shaderlab/lab_spec.h"
-#include "shaderlab/renderer.h"
+#include "grader/metrics/image.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/render/renderer.h"
 
 namespace fs = std::filesystem;
 

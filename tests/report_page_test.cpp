@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "grader/image.h"
+#include "grader/metrics/image.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;

@@ -16,9 +16,9 @@
 #include <sstream>
 
 #include "gl_test_support.h"
-#include "grader/scoring.h"
-#include "shaderlab/lab_spec.h"
-#include "shaderlab/renderer.h"
+#include "grader/metrics/scoring.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/render/renderer.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;

@@ -18,7 +18,7 @@
 #include <tuple>
 #include <vector>
 
-#include "shaderlab/gltf_loader.h"
+#include "shaderlab/scene/gltf_loader.h"
 
 using shaderlab::LightType;
 using shaderlab::Mesh;

@@ -16,12 +16,12 @@
 #include <string>
 #include <thread>
 
-#include "grader/image.h"
-#include "grader/scoring.h"
-#include "shaderlab/camera.h"
-#include "shaderlab/grading.h"
-#include "shaderlab/lab_spec.h"
-#include "viewer/file_watch.h"
+#include "grader/metrics/image.h"
+#include "grader/metrics/scoring.h"
+#include "shaderlab/scene/camera.h"
+#include "shaderlab/grading/grading.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/live/file_watch.h"
 
 namespace fs = std::filesystem;
 using shaderlab::viewer::FolderWatch;

@@ -35,13 +35,13 @@
 #include <thread>
 
 #include "commands.h"
-#include "grader/report.h"
-#include "shaderlab/batch.h"
-#include "shaderlab/gl_context.h"
-#include "shaderlab/grading.h"
-#include "shaderlab/lab_catalog.h"
-#include "shaderlab/lab_spec.h"
-#include "shaderlab/sanitizer.h"
+#include "grader/reports/report.h"
+#include "shaderlab/batch/batch.h"
+#include "shaderlab/gl/gl_context.h"
+#include "shaderlab/grading/grading.h"
+#include "shaderlab/lab/lab_catalog.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/base/sanitizer.h"
 
 namespace fs = std::filesystem;
 

@@ -18,13 +18,13 @@
 #include <sstream>
 
 #include "commands.h"
-#include "grader/report.h"
-#include "shaderlab/grading.h"
-#include "shaderlab/json_schema_check.h"
-#include "shaderlab/lab_catalog.h"
-#include "shaderlab/lab_spec.h"
-#include "shaderlab/mistake_hints.h"
-#include "shaderlab/paths.h"
+#include "grader/reports/report.h"
+#include "shaderlab/grading/grading.h"
+#include "shaderlab/lab/json_schema_check.h"
+#include "shaderlab/lab/lab_catalog.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/grading/mistake_hints.h"
+#include "shaderlab/base/paths.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;

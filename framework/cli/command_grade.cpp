@@ -17,14 +17,14 @@
 #include <sstream>
 
 #include "commands.h"
-#include "grader/atomic_file.h"
-#include "grader/report.h"
-#include "grader/scoring.h"
-#include "grader/untrusted_text.h"
-#include "shaderlab/grading.h"
-#include "shaderlab/lab_catalog.h"
-#include "shaderlab/lab_spec.h"
-#include "shaderlab/paths.h"
+#include "grader/base/atomic_file.h"
+#include "grader/reports/report.h"
+#include "grader/metrics/scoring.h"
+#include "grader/base/untrusted_text.h"
+#include "shaderlab/grading/grading.h"
+#include "shaderlab/lab/lab_catalog.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/base/paths.h"
 
 namespace fs = std::filesystem;
 

@@ -18,11 +18,11 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "grader/report.h"
-#include "shaderlab/batch.h"
-#include "shaderlab/grading.h"
-#include "shaderlab/lab_catalog.h"
-#include "shaderlab/lab_spec.h"
+#include "grader/reports/report.h"
+#include "shaderlab/batch/batch.h"
+#include "shaderlab/grading/grading.h"
+#include "shaderlab/lab/lab_catalog.h"
+#include "shaderlab/lab/lab_spec.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;

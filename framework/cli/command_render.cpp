@@ -3,13 +3,13 @@
 #include <iostream>
 
 #include "commands.h"
-#include "grader/report.h"
-#include "shaderlab/gl_context.h"
-#include "shaderlab/grading.h"
-#include "shaderlab/lab_catalog.h"
-#include "shaderlab/lab_spec.h"
-#include "shaderlab/paths.h"
-#include "shaderlab/renderer.h"
+#include "grader/reports/report.h"
+#include "shaderlab/gl/gl_context.h"
+#include "shaderlab/grading/grading.h"
+#include "shaderlab/lab/lab_catalog.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/base/paths.h"
+#include "shaderlab/render/renderer.h"
 
 namespace fs = std::filesystem;
 

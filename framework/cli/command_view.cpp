@@ -6,9 +6,9 @@
 #include <thread>
 
 #include "commands.h"
-#include "shaderlab/lab_spec.h"
-#include "viewer/file_watch.h"
-#include "viewer/viewer.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/live/file_watch.h"
+#include "shaderlab/viewer/viewer.h"
 
 namespace fs = std::filesystem;
 

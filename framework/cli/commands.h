@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "shaderlab/isolated_render.h"
+#include "shaderlab/render/isolated_render.h"
 
 namespace shaderlab::cli {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "analytic_sky.h"
-#include "grader/image.h"
+#include "grader/metrics/image.h"
 
 namespace fs = std::filesystem;
 

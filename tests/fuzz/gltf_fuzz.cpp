@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "shaderlab/gltf_loader.h"
+#include "shaderlab/scene/gltf_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string bytes(reinterpret_cast<const char*>(data), size);

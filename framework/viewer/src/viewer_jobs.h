@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "viewer/render_service.h"
+#include "shaderlab/live/render_service.h"
 
 namespace shaderlab::viewer {
 

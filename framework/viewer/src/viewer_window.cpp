@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "shaderlab/gl.h"
+#include "shaderlab/gl/gl.h"
 // glad above provides the GL declarations; GLFW must not include its own.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -24,14 +24,14 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "grader/heatmap.h"
-#include "grader/report.h"
-#include "grader/report_images.h"
-#include "grader/scoring.h"
-#include "shaderlab/grading.h"
-#include "viewer/file_watch.h"
-#include "viewer/render_service.h"
-#include "viewer/viewer.h"
+#include "grader/metrics/heatmap.h"
+#include "grader/reports/report.h"
+#include "grader/reports/report_images.h"
+#include "grader/metrics/scoring.h"
+#include "shaderlab/grading/grading.h"
+#include "shaderlab/live/file_watch.h"
+#include "shaderlab/live/render_service.h"
+#include "shaderlab/viewer/viewer.h"
 #include "viewer_jobs.h"
 
 namespace fs = std::filesystem;

@@ -3,7 +3,7 @@
 
 The fixtures are committed; this script only documents how each was made and regenerates them
 if one needs changing. Valid fixtures exercise one loader feature each; malformed ones are
-named after the problem they contain, and tests/gltf_loader_test.cpp checks each error names
+named after the problem they contain, and framework/scene/tests/gltf_loader_test.cpp checks each error names
 the file and the problem. Buffers are embedded as base64 data URIs so each fixture is one file,
 except where the point is an external URI.
 """

@@ -2,7 +2,7 @@
 """Writes the "real-world" glTF files in this folder (run: python3 make_realworld.py).
 
 Each file reproduces one way scenes exported by Blender, Sketchfab or the Khronos samples differ
-from the bundled ones (tests/gltf_realworld_test.cpp names what each must do: load and render
+from the bundled ones (framework/scene/tests/gltf_realworld_test.cpp names what each must do: load and render
 like its plain twin, or be refused with a given message). All are written by this script, or by
 the Debian-packaged `draco_transcoder` and `gltfpack` from files it writes, so they are the
 project's own (LICENSE.md). Buffers are embedded data URIs, so each .gltf is one file.

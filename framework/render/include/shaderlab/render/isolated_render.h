@@ -1,0 +1,63 @@
+// Runs renderLab() for untrusted shaders in a child process with wall-clock limits and a memory
+// limit, so a shader that loops forever, crashes the driver or eats memory costs one lab's
+// result, never the grader. The child creates its own GL context (the parent never holds one,
+// so fork() copies no driver threads), runs in its own process group, dies with the parent
+// (PR_SET_PDEATHSIG) and hands back images through an anonymous memory file (memfd): nothing
+// is written to disk, so nothing is left behind when either process is killed. Linux only.
+//
+// Every string the child hands back (driver logs, messages, file names) is escaped and capped
+// (grader/untrusted_text.h) and at most kMaxDiagnostics diagnostics are kept.
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+#include "shaderlab/gl/gl_context.h"
+#include "shaderlab/render/renderer.h"
+
+namespace shaderlab {
+
+enum class IsolatedStatus { Ok, Missing, CompileError, LinkError, RenderError, Timeout, Crashed };
+const char* isolatedStatusName(IsolatedStatus status);
+
+// The limits of one lab's render (docs/grading.md, "Limits"). The two clocks are separate: a
+// shader that takes long to compile (a 20,000-entry constant array) is not a shader that loops
+// forever, and the message says which limit ran out.
+struct IsolationLimits {
+    // Wall clock for drawing: from the first scene to the last image read back.
+    double timeout_s = 60.0;
+    // Wall clock for everything before: creating the context, reading the files, compiling and
+    // linking every program.
+    double compile_timeout_s = 30.0;
+    // Resident memory of the child, watched by the parent (killed above it). The child's address
+    // space is capped too, at this plus kAddressSpaceHeadroom: llvmpipe reserves far more address
+    // space than it touches.
+    std::size_t memory_bytes = std::size_t(2) << 30;
+};
+constexpr std::size_t kAddressSpaceHeadroom = std::size_t(4) << 30;
+constexpr std::size_t kMaxDiagnostics = 50;
+
+struct IsolatedRender {
+    IsolatedStatus status = IsolatedStatus::Ok;
+    std::string message;
+    LabRender render;        // scenes and diagnostics as the child produced them
+    std::string renderer;    // GL_RENDERER and GL_VERSION the child saw
+    std::string last_event;  // the last thing the child reported doing (RenderOptions::progress)
+    // Which limit stopped the child: "compile_timeout", "draw_timeout", "memory", or "loop" (the
+    // loop guard of shader_program.h stopped a loop: status Timeout); empty if none.
+    std::string limit;
+    double wall_ms = 0.0;
+    double compile_ms = 0.0;         // of wall_ms, spent before the first scene
+    std::size_t peak_rss_bytes = 0;  // the child's largest resident size the parent saw
+};
+
+// A diagnostic as a JSON object, the form it takes between a render child and its parent (here
+// and in the viewer's render server).
+nlohmann::json diagnosticToJson(const Diagnostic& d);
+
+// `options.progress`, when set, is called in this process with each event the child reports.
+IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_dir, Backend backend,
+                                 const IsolationLimits& limits, const RenderOptions& options = {});
+
+}  // namespace shaderlab

@@ -1,0 +1,39 @@
+// `shaderlab view`: a window on one lab, rendered from a submission's shaders by the grader's own
+// render path (renderLab through RenderService, in a child process), beside the reference, with
+// the diff heat map, the per-scene verdict and a pass inspector; it renders again when a file of
+// the submission's lab folder changes. The window is glue: GLFW for the window, Dear ImGui for
+// the panels, the grader for every number. It does not grade a submission for points (`check`).
+#pragma once
+
+#include <string>
+
+#include "shaderlab/scene/camera.h"
+#include "shaderlab/gl/gl_context.h"
+#include "shaderlab/lab/lab_spec.h"
+
+namespace shaderlab::viewer {
+
+struct ViewerOptions {
+    LabSpec spec;                 // the lab, parsed and valid
+    std::string submission_root;  // folder mirroring labs/; the lab's shaders are in <root>/<lab id>
+    std::string reference_root;   // reference solutions (same layout); empty: the stored goldens
+    Backend backend = Backend::OSMesa;
+    double timeout_s = 5.0;  // one render of one scene
+    std::string scene;       // first scene shown (empty: the lab's first)
+    std::string image;       // first image shown, "pass.attachment" (empty: the final graded image)
+    CameraOrbit orbit;       // first camera: the graded view turned by this
+    // For scripts and tests: exit after this many frames once the first picture (or error) and
+    // the reference (when one is rendered) are in, or once this many pictures (or errors) made
+    // after a file change are shown (0: neither).
+    int frames = 0;
+    int exit_after_reloads = 0;
+    std::string screenshot;         // at exit: the picture as the window shows it, one pixel per image pixel
+    std::string screenshot_window;  // at exit: the whole window, panels included
+    std::string view_mode = "student";  // student | reference | diff | split
+    int width = 1180, height = 760;
+};
+
+// Runs the window until it is closed. Returns 0, or 2 when it cannot open (no display, no GL 3.3).
+int runViewer(const ViewerOptions& options);
+
+}  // namespace shaderlab::viewer

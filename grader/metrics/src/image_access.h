@@ -1,0 +1,74 @@
+// Internal: the input checks and colour-channel access every metric shares, so that all of
+// them treat channel counts, sizes and masks the same way.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "grader/metrics/image.h"
+#include "grader/metrics/mask.h"
+
+namespace grader::detail {
+
+inline bool supportedChannelCount(int channels) { return channels == 1 || channels == 3 || channels == 4; }
+
+// Interleaved offset of colour channel c (0 = R, 1 = G, 2 = B) within a pixel: grey images
+// answer every colour channel from their single channel; alpha is never a colour channel.
+inline int colourChannel(const Image& image, int c) { return image.channels >= 3 ? c : 0; }
+
+inline std::string describeSize(const Image& image) {
+    return std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+           std::to_string(image.channels);
+}
+
+// Empty when the image is usable on its own; otherwise what is wrong with it.
+inline std::string checkImage(const Image& image, const char* role) {
+    if (image.width <= 0 || image.height <= 0) {
+        return std::string(role) + " image is empty (" + describeSize(image) + ")";
+    }
+    if (!supportedChannelCount(image.channels)) {
+        return std::string(role) + " image has " + std::to_string(image.channels) +
+               " channels; expected 1, 3 or 4";
+    }
+    if (image.pixels.size() != static_cast<std::size_t>(image.width) * image.height * image.channels) {
+        return std::string(role) + " image holds " + std::to_string(image.pixels.size()) +
+               " values, not width * height * channels for " + describeSize(image);
+    }
+    return {};
+}
+
+// Empty when reference, test and the optional mask fit together; otherwise why not.
+inline std::string checkPair(const Image& reference, const Image& test, const Mask* mask) {
+    std::string error = checkImage(reference, "reference");
+    if (error.empty()) error = checkImage(test, "test");
+    if (!error.empty()) return error;
+    if (reference.width != test.width || reference.height != test.height) {
+        return "reference is " + describeSize(reference) + " but test is " + describeSize(test) +
+               "; the sizes must match";
+    }
+    if (mask != nullptr) {
+        if (mask->width != reference.width || mask->height != reference.height ||
+            mask->values.size() != static_cast<std::size_t>(mask->width) * mask->height) {
+            return "mask is " + std::to_string(mask->width) + "x" + std::to_string(mask->height) +
+                   " but the images are " + std::to_string(reference.width) + "x" +
+                   std::to_string(reference.height);
+        }
+    }
+    return {};
+}
+
+// True when both images hold the same values, channel for channel (float ==, so a NaN is never
+// identical and such images take the full path). Metrics use it to skip their filters: equal
+// inputs have known results (PSNR infinite, SSIM 1, FLIP 0, no mismatch).
+inline bool identicalPixels(const Image& a, const Image& b) {
+    if (a.channels != b.channels || a.pixels.size() != b.pixels.size()) return false;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i)
+        if (!(a.pixels[i] == b.pixels[i])) return false;
+    return true;
+}
+
+inline bool counts(const Mask* mask, std::size_t pixel) {
+    return mask == nullptr || mask->values[pixel] != 0;
+}
+
+}  // namespace grader::detail

@@ -1,0 +1,254 @@
+// Every metric under inputs that break naive formulas: constant, black and white images (zero
+// variance: SSIM's and PSNR's divisions), denormal values, NaN and Inf, HDR values up to the
+// half-float limit, the smallest images SSIM accepts, grey and RGBA layouts. A metric must
+// answer a defined input with a number (never NaN), and the fast path for bit-identical images
+// must agree with the full computation on images one rounding step apart.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "grader/metrics/compare.h"
+#include "grader/metrics/metrics.h"
+#include "grader/metrics/scoring.h"
+#include "test_images.h"
+
+namespace grader {
+namespace {
+
+using test::constantImage;
+using test::greyImage;
+
+constexpr float kDenormal = 1e-40f;   // below FLT_MIN (1.18e-38): a subnormal float
+constexpr float kHalfMax = 65504.0f;  // the largest finite half float (rgba16f targets)
+
+Image noiseImage(int w, int h, int channels, std::uint32_t seed, float scale = 1.0f) {
+    Image image(w, h, channels);
+    test::Lcg random(seed);
+    for (float& v : image.pixels) v = scale * random.next();
+    return image;
+}
+
+struct Pair {
+    std::string name;
+    Image reference, test;
+};
+
+std::vector<Pair> definedPairs() {
+    std::vector<Pair> pairs;
+    auto add = [&](std::string name, Image a, Image b) { pairs.push_back({std::move(name), a, b}); };
+    add("black_black", greyImage(32, 32, 0.0f), greyImage(32, 32, 0.0f));
+    add("white_white", greyImage(32, 32, 1.0f), greyImage(32, 32, 1.0f));
+    add("black_white", greyImage(32, 32, 0.0f), greyImage(32, 32, 1.0f));
+    add("white_black", greyImage(32, 32, 1.0f), greyImage(32, 32, 0.0f));
+    add("grey_constants", greyImage(32, 32, 0.25f), greyImage(32, 32, 0.75f));
+    add("constant_noise", greyImage(32, 32, 0.5f), noiseImage(32, 32, 3, 7));
+    add("denormal_black", greyImage(32, 32, kDenormal), greyImage(32, 32, 0.0f));
+    add("denormal_noise", noiseImage(32, 32, 3, 3, kDenormal), noiseImage(32, 32, 3, 4, kDenormal));
+    add("smallest_ssim_window", noiseImage(11, 11, 3, 1), noiseImage(11, 11, 3, 2));
+    add("below_ssim_window", noiseImage(4, 4, 3, 1), noiseImage(4, 4, 3, 2));
+    add("one_pixel", greyImage(1, 1, 0.2f), greyImage(1, 1, 0.9f));
+    add("grey_layout", noiseImage(24, 24, 1, 5), noiseImage(24, 24, 1, 6));
+    add("rgba_layout", noiseImage(24, 24, 4, 5), noiseImage(24, 24, 4, 6));
+    add("wide_strip", noiseImage(300, 11, 3, 8), noiseImage(300, 11, 3, 9));
+    return pairs;
+}
+
+class DefinedInputs : public ::testing::TestWithParam<Pair> {};
+
+TEST_P(DefinedInputs, EveryMetricAnswersWithANumber) {
+    const Pair& p = GetParam();
+    const PsnrResult psnr = computePsnr(p.reference, p.test);
+    ASSERT_TRUE(psnr.ok) << psnr.error;
+    EXPECT_FALSE(std::isnan(psnr.psnr_db));
+    EXPECT_FALSE(std::isnan(psnr.mse));
+    EXPECT_GE(psnr.mse, 0.0);
+
+    const SsimResult ssim = computeSsim(p.reference, p.test);
+    if (p.reference.width >= 11 && p.reference.height >= 11) {
+        ASSERT_TRUE(ssim.ok) << ssim.error;
+        EXPECT_TRUE(std::isfinite(ssim.ssim)) << ssim.ssim;
+        EXPECT_LE(ssim.ssim, 1.0 + 1e-9);
+        EXPECT_GE(ssim.ssim, -1.0 - 1e-9);
+    } else {
+        EXPECT_FALSE(ssim.ok);  // undefined, said so, not a NaN
+        EXPECT_FALSE(ssim.error.empty());
+    }
+
+    const FlipResult flip = computeFlip(p.reference, p.test);
+    ASSERT_TRUE(flip.ok) << flip.error;
+    EXPECT_TRUE(std::isfinite(flip.mean));
+    EXPECT_GE(flip.mean, 0.0);
+    EXPECT_LE(flip.mean, 1.0);
+    EXPECT_TRUE(std::isfinite(flip.weighted_median));
+    for (float e : flip.error_map) ASSERT_TRUE(std::isfinite(e) && e >= 0.0f && e <= 1.0f) << e;
+
+    const ToleranceCompareResult cmp = compareShiftTolerant(p.reference, p.test);
+    ASSERT_TRUE(cmp.ok) << cmp.error;
+    EXPECT_TRUE(std::isfinite(cmp.mismatch_fraction));
+
+    for (ImageRange range : {ImageRange::Display, ImageRange::Hdr}) {
+        const ImageVerdict v = judgeImage(p.reference, {}, p.test, {}, Thresholds{}, range);
+        for (const MetricSet* m : {&v.covered, &v.frame}) {
+            EXPECT_FALSE(std::isnan(m->psnr_db));
+            EXPECT_TRUE(std::isfinite(m->ssim));
+            EXPECT_TRUE(std::isfinite(m->flip_mean));
+            EXPECT_TRUE(std::isfinite(m->mismatch_fraction));
+        }
+        EXPECT_TRUE(std::isfinite(v.hdr_scale));
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Stress, DefinedInputs, ::testing::ValuesIn(definedPairs()),
+                         [](const ::testing::TestParamInfo<Pair>& param_info) {
+                             return param_info.param.name;
+                         });
+
+TEST(MetricStress, DenormalDifferencesReadAsEqualForEveryVerdict) {
+    // 1e-40 against 0 is far below an 8-bit step: the grade must not see it.
+    const Image a = greyImage(32, 32, kDenormal), b = greyImage(32, 32, 0.0f);
+    const ImageVerdict v = judgeImage(a, {}, b, {}, Thresholds{});
+    EXPECT_TRUE(v.passed);
+    EXPECT_TRUE(std::isinf(v.covered.psnr_db));
+}
+
+TEST(MetricStress, NanAndInfInTheTestImageFailWithFiniteMetrics) {
+    for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                      -std::numeric_limits<float>::infinity()}) {
+        const Image reference = greyImage(32, 32, 0.5f);
+        Image broken = reference;
+        broken.at(3, 4, 1) = bad;
+        broken.at(20, 21, 0) = bad;
+        for (ImageRange range : {ImageRange::Display, ImageRange::Hdr}) {
+            const ImageVerdict v = judgeImage(reference, {}, broken, {}, Thresholds{}, range);
+            EXPECT_FALSE(v.passed) << bad;
+            EXPECT_EQ(v.nan_count + v.inf_count, 2u) << bad;
+            EXPECT_FALSE(std::isnan(v.covered.psnr_db));
+            EXPECT_TRUE(std::isfinite(v.covered.ssim));
+            EXPECT_TRUE(std::isfinite(v.covered.flip_mean));
+            EXPECT_TRUE(std::isfinite(v.hdr_scale));
+        }
+    }
+}
+
+TEST(MetricStress, HdrUpToTheHalfFloatLimitStaysFinite) {
+    Image reference(32, 32, 4, 1.0f), test(32, 32, 4, 1.0f);
+    test::Lcg random(11);
+    for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 32; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const float v = kHalfMax * random.next();
+                reference.at(x, y, c) = v;
+                test.at(x, y, c) = v * 0.999f;
+            }
+        }
+    }
+    reference.at(0, 0, 0) = kHalfMax;
+    const ImageVerdict same = judgeImage(reference, {}, reference, {}, Thresholds{}, ImageRange::Hdr);
+    EXPECT_TRUE(same.passed);
+    EXPECT_NEAR(same.hdr_scale, kHalfMax, kHalfMax * 0.01);
+    const ImageVerdict close = judgeImage(reference, {}, test, {}, Thresholds{}, ImageRange::Hdr);
+    EXPECT_TRUE(close.passed) << (close.reasons.empty() ? "" : close.reasons[0]);
+    EXPECT_TRUE(std::isfinite(close.covered.psnr_db));
+    EXPECT_TRUE(std::isfinite(close.covered.flip_mean));
+    // Overflowing the half range (what a float target holds beyond it) is still a number.
+    test.at(1, 1, 0) = 1e30f;
+    const ImageVerdict over = judgeImage(reference, {}, test, {}, Thresholds{}, ImageRange::Hdr);
+    EXPECT_TRUE(std::isfinite(over.covered.flip_mean));
+    EXPECT_FALSE(std::isnan(over.covered.psnr_db));
+}
+
+// quantise8 against the formula it implements, round(clamp(v, 0, 1) * 255) / 255, over every
+// 251st float in [0, 1] (all the values one rounding step either side of each level included by
+// the explicit list) and the values outside.
+TEST(MetricStress, QuantiseMatchesRoundOfTheClampedValue) {
+    std::vector<float> values = {-1.0f,
+                                 -0.0f,
+                                 0.0f,
+                                 1.0f,
+                                 2.0f,
+                                 1e30f,
+                                 -1e30f,
+                                 kDenormal,
+                                 std::numeric_limits<float>::infinity(),
+                                 -std::numeric_limits<float>::infinity(),
+                                 std::numeric_limits<float>::quiet_NaN()};
+    for (int level = 0; level < 256; ++level) {
+        const float half = (level + 0.5f) / 255.0f;
+        values.push_back(half);
+        values.push_back(std::nextafter(half, 0.0f));
+        values.push_back(std::nextafter(half, 1.0f));
+    }
+    for (std::uint32_t bits = 0; bits <= 0x3f800000u; bits += 251) {
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        values.push_back(f);
+    }
+    Image image(static_cast<int>(values.size()), 1, 1);
+    image.pixels = values;
+    const Image q = quantise8(image);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const float v = values[i];
+        const float c = std::isnan(v) ? 0.0f : std::fmin(std::fmax(v, 0.0f), 1.0f);
+        const float expected = std::round(c * 255.0f) / 255.0f;
+        ASSERT_EQ(q.pixels[i], expected) << "value " << v;
+    }
+}
+
+// The identical-image fast path against the full computation one float step away.
+TEST(MetricStress, IdenticalFastPathAgreesWithTheFullComputation) {
+    const Image a = noiseImage(64, 48, 3, 21);
+    Image nearly = a;
+    nearly.at(30, 20, 1) = std::nextafter(nearly.at(30, 20, 1), 2.0f);  // defeats the fast path
+    Mask mask(64, 48, 0);
+    for (int y = 10; y < 40; ++y)
+        for (int x = 5; x < 50; ++x) mask.at(x, y) = 1;
+    for (const Mask* m : {static_cast<const Mask*>(nullptr), static_cast<const Mask*>(&mask)}) {
+        SsimConfig sc;
+        sc.mask = m;
+        sc.want_map = true;
+        const SsimResult fast_ssim = computeSsim(a, a, sc), full_ssim = computeSsim(a, nearly, sc);
+        ASSERT_TRUE(fast_ssim.ok && full_ssim.ok);
+        EXPECT_EQ(fast_ssim.ssim, 1.0);
+        EXPECT_NEAR(full_ssim.ssim, 1.0, 1e-5);
+        EXPECT_EQ(fast_ssim.pixel_count, full_ssim.pixel_count);
+        EXPECT_EQ(fast_ssim.channel_count, full_ssim.channel_count);
+        ASSERT_EQ(fast_ssim.map.size(), full_ssim.map.size());
+        for (std::size_t i = 0; i < fast_ssim.map.size(); ++i)
+            ASSERT_NEAR(fast_ssim.map[i], full_ssim.map[i], 1e-4);
+
+        FlipConfig fc;
+        fc.mask = m;
+        const FlipResult fast_flip = computeFlip(a, a, fc), full_flip = computeFlip(a, nearly, fc);
+        ASSERT_TRUE(fast_flip.ok && full_flip.ok);
+        EXPECT_EQ(fast_flip.mean, 0.0);
+        EXPECT_NEAR(full_flip.mean, 0.0, 1e-6);
+        EXPECT_EQ(fast_flip.pixel_count, full_flip.pixel_count);
+        EXPECT_EQ(fast_flip.width, full_flip.width);
+        ASSERT_EQ(fast_flip.error_map.size(), full_flip.error_map.size());
+
+        ToleranceCompareConfig cc;
+        cc.mask = m;
+        const ToleranceCompareResult fast_cmp = compareShiftTolerant(a, a, cc),
+                                     full_cmp = compareShiftTolerant(a, nearly, cc);
+        ASSERT_TRUE(fast_cmp.ok && full_cmp.ok);
+        EXPECT_EQ(fast_cmp.compared_count, full_cmp.compared_count);
+        EXPECT_EQ(fast_cmp.mismatch_count, 0u);
+        EXPECT_EQ(full_cmp.mismatch_count, 0u);
+        EXPECT_EQ(fast_cmp.mismatches.values, full_cmp.mismatches.values);
+        EXPECT_TRUE(fast_cmp.worst.tile.empty());
+    }
+    // An empty mask is an error on both paths.
+    const Mask none(64, 48, 0);
+    FlipConfig fc;
+    fc.mask = &none;
+    EXPECT_FALSE(computeFlip(a, a, fc).ok);
+    EXPECT_FALSE(computeFlip(a, nearly, fc).ok);
+}
+
+}  // namespace
+}  // namespace grader
