@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "gl_test_support.h"
-#include "shaderlab/scene/gltf_loader.h"
 #include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/render/renderer.h"
+#include "shaderlab/scene/gltf_loader.h"
 
 namespace fs = std::filesystem;
 

@@ -18,10 +18,10 @@
 
 #include "grader/metrics/image.h"
 #include "grader/metrics/scoring.h"
-#include "shaderlab/scene/camera.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/live/file_watch.h"
+#include "shaderlab/scene/camera.h"
 
 namespace fs = std::filesystem;
 using shaderlab::viewer::FolderWatch;

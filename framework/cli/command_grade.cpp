@@ -18,13 +18,13 @@
 
 #include "commands.h"
 #include "grader/base/atomic_file.h"
-#include "grader/reports/report.h"
-#include "grader/metrics/scoring.h"
 #include "grader/base/untrusted_text.h"
+#include "grader/metrics/scoring.h"
+#include "grader/reports/report.h"
+#include "shaderlab/base/paths.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/lab/lab_catalog.h"
 #include "shaderlab/lab/lab_spec.h"
-#include "shaderlab/base/paths.h"
 
 namespace fs = std::filesystem;
 

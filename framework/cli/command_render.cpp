@@ -4,11 +4,11 @@
 
 #include "commands.h"
 #include "grader/reports/report.h"
+#include "shaderlab/base/paths.h"
 #include "shaderlab/gl/gl_context.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/lab/lab_catalog.h"
 #include "shaderlab/lab/lab_spec.h"
-#include "shaderlab/base/paths.h"
 #include "shaderlab/render/renderer.h"
 
 namespace fs = std::filesystem;

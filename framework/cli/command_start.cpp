@@ -6,8 +6,8 @@
 #include <system_error>
 
 #include "commands.h"
-#include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/base/paths.h"
+#include "shaderlab/lab/lab_spec.h"
 
 namespace fs = std::filesystem;
 

@@ -8,8 +8,8 @@
 #include <cstdlib>
 
 #include "gl_test_support.h"
-#include "shaderlab/gl/gl.h"
 #include "shaderlab/base/sanitizer.h"
+#include "shaderlab/gl/gl.h"
 
 namespace {
 

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "grader/metrics/metrics.h"
-#include "grader/reports/report_images.h"
 #include "grader/metrics/scoring.h"
+#include "grader/reports/report_images.h"
 #include "shaderlab/base/paths.h"
 
 namespace fs = std::filesystem;

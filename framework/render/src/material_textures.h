@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "shaderlab/gl/gl.h"
-#include "shaderlab/scene/scene.h"
 #include "shaderlab/render/shader_program.h"
+#include "shaderlab/scene/scene.h"
 
 namespace shaderlab {
 

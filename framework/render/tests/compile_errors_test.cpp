@@ -13,8 +13,8 @@
 #include <regex>
 #include <sstream>
 
-#include "shaderlab/feedback/glsl_explain.h"
 #include "gl_test_support.h"
+#include "shaderlab/feedback/glsl_explain.h"
 #include "shaderlab/render/shader_program.h"
 
 namespace {

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "../src/tangent_space.h"
+#include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/scene/camera.h"
 #include "shaderlab/scene/gltf_loader.h"
-#include "shaderlab/lab/lab_spec.h"
 
 namespace fs = std::filesystem;
 using shaderlab::Scene;

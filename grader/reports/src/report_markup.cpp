@@ -12,8 +12,8 @@
 #include <utility>
 
 #include "embed.h"
-#include "grader/reports/report.h"
 #include "grader/metrics/scoring.h"
+#include "grader/reports/report.h"
 
 namespace grader {
 

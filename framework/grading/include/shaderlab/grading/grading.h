@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "grader/reports/report.h"
 #include "grader/metrics/scoring.h"
+#include "grader/reports/report.h"
 #include "shaderlab/gl/gl_context.h"
 #include "shaderlab/render/isolated_render.h"
 

@@ -11,9 +11,9 @@
 #include <memory>
 #include <string>
 
-#include "shaderlab/scene/camera.h"
-#include "shaderlab/render/isolated_render.h"
 #include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/render/isolated_render.h"
+#include "shaderlab/scene/camera.h"
 
 namespace shaderlab::viewer {
 

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "grader/metrics/image.h"
-#include "shaderlab/scene/camera.h"
 #include "shaderlab/lab/lab_spec.h"
-#include "shaderlab/scene/scene.h"
 #include "shaderlab/render/shader_program.h"
+#include "shaderlab/scene/camera.h"
+#include "shaderlab/scene/scene.h"
 
 namespace shaderlab {
 

@@ -4,8 +4,8 @@
 // numbers are the student's own. `#include "file"` lines are replaced by the file's text between
 // `#line` directives that give each included file its own source-string number, so diagnostics
 // name the file a line belongs to. The logs are then explained in plain words, one error per root
-// cause, at the line to fix (framework/feedback/include/shaderlab/feedback/glsl_explain.h). This file does not decide what a
-// failure is worth: the grader does.
+// cause, at the line to fix (framework/feedback/include/shaderlab/feedback/glsl_explain.h). This file does
+// not decide what a failure is worth: the grader does.
 #pragma once
 
 #include <cstdint>
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "shaderlab/feedback/diagnostic.h"
 #include "shaderlab/base/paths.h"
+#include "shaderlab/feedback/diagnostic.h"
 
 namespace shaderlab {
 

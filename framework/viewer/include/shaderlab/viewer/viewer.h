@@ -7,9 +7,9 @@
 
 #include <string>
 
-#include "shaderlab/scene/camera.h"
 #include "shaderlab/gl/gl_context.h"
 #include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/scene/camera.h"
 
 namespace shaderlab::viewer {
 
