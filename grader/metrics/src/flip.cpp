@@ -257,6 +257,227 @@ class ErrorPool {
     std::size_t count_ = 0;
 };
 
+// Steps 1 to 3 of FLIP over one image pair that computeFlip has checked, streamed by rows: each
+// image row is converted and filtered horizontally into rings as the vertical passes need it,
+// and the per-pixel error of each pair of output rows is formed at once, into the error map (or
+// a copy of the counted errors) and the pooled statistics.
+class FlipPasses {
+  public:
+    FlipPasses(const Image& reference, const Image& test, const FlipConfig& config, FlipResult& result)
+        : kernels_(detail::kernels()),
+          config_(config),
+          result_(result),
+          width_(reference.width),
+          height_(reference.height),
+          plane_size_(static_cast<std::size_t>(width_) * height_),
+          filters_(makeFilters(config.pixels_per_degree)),
+          pad_(filters_.pad_radius),
+          colour_constants_(colourConstants()),
+          ring_(height_, pad_, detail::Border::ClampToEdge),
+          ring_stride_(detail::ringStride(width_)),
+          ring_size_(ring_stride_ * ring_.slots()),
+          row_stride_(detail::paddedRowLength(width_)),
+          padded_stride_(detail::paddedRowLength(width_ + 2 * pad_)),
+          columns_(pad_),
+          window_slots_(2 * pad_ + 2),
+          images_{&reference, &test} {
+        allocate();
+        // Statistics as the rows come. The percentiles need a second look at the errors: the
+        // error map when there is one, otherwise a copy of the counted errors.
+        if (config.want_map) result.error_map.resize(plane_size_);
+        if (!config.want_map) kept_errors_.reserve(plane_size_);
+    }
+
+    // Step 3: vertical passes and the per-pixel error, two output rows at a time.
+    void run() {
+        int next_row = 0;
+        for (int y = 0; y < height_; y += 2) {
+            for (; next_row <= ring_.lastRowNeeded(y); ++next_row) filterRow(next_row);
+            ring_.window(y, window_slots_.data());
+            const bool pair = y + 1 < height_;
+            for (int which = 0; which < 2; ++which) filterColumns(which, pair);
+            finishRow(y, outputs_[0][0], outputs_[0][1]);
+            if (pair) finishRow(y + 1, outputs_[1][0], outputs_[1][1]);
+        }
+    }
+
+    const ErrorPool& pool() const { return pool_; }
+    const std::vector<float>& keptErrors() const { return kept_errors_; }
+    double errorSum() const { return error_sum_; }
+    float maxError() const { return max_error_; }
+
+  private:
+    enum Plane { kY, kCx, kBy1, kBy2, kGauss, kFirst, kSecond, kPlaneCount };
+    enum Channel { kChannelCx, kChannelCz, kChannelLuminance, kChannelCount };
+    enum Output { kOutY, kOutCx, kOutBy1, kOutBy2, kOutDx, kOutDdx, kOutDy, kOutDdy, kOutputCount };
+
+    // Largest possible colour distance (green against blue), and where redistribution bends.
+    static detail::FlipColourConstants colourConstants() {
+        const float cmax =
+            static_cast<float>(std::pow(hyab(linearRgbToHuntLab(0, 1, 0), linearRgbToHuntLab(0, 0, 1)), kQc));
+        const float pccmax = kPc * cmax;
+        return detail::FlipColourConstants{pccmax, kPt / pccmax, (1.0f - kPt) / (cmax - pccmax), kPt};
+    }
+
+    // Buffers, in one allocation: per image seven rings of horizontally filtered rows
+    // (filter.h; kY holds the filtered luminance, not Y), the padded rows of the three channels being
+    // filtered, the deinterleaved sRGB row, per image eight vertically filtered rows, and the error row. Rows
+    // are padded to whole vector groups (kernels.h) and everything is zeroed, so the groups past the end of
+    // a row compute harmless values.
+    void allocate() {
+        const std::size_t total = 2 * kPlaneCount * ring_size_ + kChannelCount * padded_stride_ +
+                                  (3 + 2 * 2 * kOutputCount + 1) * row_stride_;
+        storage_.reset(new float[total]);
+        std::fill(storage_.get(), storage_.get() + total, 0.0f);
+        float* cursor = storage_.get();
+        auto take = [&cursor](std::size_t n) {
+            float* p = cursor;
+            cursor += n;
+            return p;
+        };
+        for (auto& image_rings : rings_) {
+            for (float*& p : image_rings) p = take(ring_size_);
+        }
+        for (float*& p : padded_) p = take(padded_stride_);
+        for (float*& p : srgb_row_) p = take(row_stride_);
+        for (auto& row_outputs : outputs_) {
+            for (auto& image_outputs : row_outputs) {
+                for (float*& p : image_outputs) p = take(row_stride_);
+            }
+        }
+        error_row_ = take(row_stride_);
+    }
+
+    // Steps 1 and 2 for image row y of both images: colour conversion, horizontal filtering.
+    void filterRow(int y) {
+        const std::size_t slot = static_cast<std::size_t>(y % ring_.slots()) * ring_stride_;
+        for (int which = 0; which < 2; ++which) {
+            const Image& image = *images_[which];
+            const int channels = image.channels;
+            const float* row = &image.pixels[static_cast<std::size_t>(y) * width_ * channels];
+            kernels_.deinterleave_rgb(row, channels, width_, srgb_row_[0], srgb_row_[1], srgb_row_[2]);
+            kernels_.flip_colour_row(srgb_row_, width_, padded_[kChannelCx] + pad_,
+                                     padded_[kChannelCz] + pad_, padded_[kChannelLuminance] + pad_);
+            for (float* p : padded_) detail::fillBorders(p, width_, pad_, detail::Border::ClampToEdge);
+
+            float* const* out = rings_[which];
+            auto taps = [&](Channel channel, const detail::Kernel& kernel) {
+                return detail::horizontalTaps(padded_[channel], pad_, kernel.radius, columns_);
+            };
+            detail::filterEven(taps(kChannelCx, filters_.red_green), 0, width_, filters_.red_green,
+                               out[kCx] + slot);
+            detail::filterEvenEven(taps(kChannelCz, filters_.blue_yellow1), 0, width_, filters_.blue_yellow1,
+                                   filters_.blue_yellow2, out[kBy1] + slot, out[kBy2] + slot);
+            detail::filterEvenEvenOddEven(taps(kChannelLuminance, filters_.luminance_gauss), 0, width_,
+                                          filters_.luminance_achromatic, filters_.luminance_gauss,
+                                          filters_.luminance_first, filters_.luminance_second, out[kY] + slot,
+                                          out[kGauss] + slot, out[kFirst] + slot, out[kSecond] + slot);
+        }
+    }
+
+    // The vertical passes of one image for output rows y and (if `pair`) y + 1.
+    void filterColumns(int which, bool pair) {
+        float* const* in = rings_[which];
+        float* const* out0 = outputs_[0][which];
+        float* const* out1 = outputs_[1][which];
+        auto taps = [&](Plane plane, const detail::Kernel& kernel) {
+            return ring_.taps(in[plane], ring_stride_, window_slots_.data(), kernel.radius);
+        };
+        // One Gaussian pass per plane, except on the luminance's horizontal Gaussian, which
+        // gets the first and second derivative (d/dy, d^2/dy^2); d/dx comes from the
+        // horizontal derivative planes with a Gaussian down the columns.
+        const struct {
+            Plane plane;
+            const detail::Kernel* kernel;
+            Output output;
+        } singles[] = {{kY, &filters_.achromatic, kOutY},       {kCx, &filters_.red_green, kOutCx},
+                       {kBy1, &filters_.blue_yellow1, kOutBy1}, {kBy2, &filters_.blue_yellow2, kOutBy2},
+                       {kFirst, &filters_.gauss, kOutDx},       {kSecond, &filters_.gauss, kOutDdx}};
+        for (const auto& pass : singles) {
+            if (pair) {
+                detail::filterEvenRows2(taps(pass.plane, *pass.kernel), 0, width_, *pass.kernel,
+                                        out0[pass.output], out1[pass.output]);
+            } else {
+                detail::filterEven(taps(pass.plane, *pass.kernel), 0, width_, *pass.kernel,
+                                   out0[pass.output]);
+            }
+        }
+        if (pair) {
+            detail::filterOddEvenRows2(taps(kGauss, filters_.first_derivative), 0, width_,
+                                       filters_.first_derivative, filters_.second_derivative, out0[kOutDy],
+                                       out0[kOutDdy], out1[kOutDy], out1[kOutDdy]);
+        } else {
+            detail::filterOddEven(taps(kGauss, filters_.first_derivative), 0, width_,
+                                  filters_.first_derivative, filters_.second_derivative, out0[kOutDy],
+                                  out0[kOutDdy]);
+        }
+    }
+
+    // The error of output row y, into the map (or the kept errors) and the statistics.
+    void finishRow(int y, float* const* reference_rows, float* const* test_rows) {
+        kernels_.flip_error_row(reference_rows, test_rows, 0, width_, colour_constants_, error_row_);
+        const std::size_t row_start = static_cast<std::size_t>(y) * width_;
+        const std::uint8_t* mask_row = config_.mask ? config_.mask->values.data() + row_start : nullptr;
+        if (config_.want_map) {
+            std::copy(error_row_, error_row_ + width_, result_.error_map.begin() + row_start);
+        } else if (mask_row == nullptr) {
+            kept_errors_.insert(kept_errors_.end(), error_row_, error_row_ + width_);
+        } else {
+            for (int i = 0; i < width_; ++i) {
+                if (mask_row[i]) kept_errors_.push_back(error_row_[i]);
+            }
+        }
+        pool_.addRow(error_row_, mask_row, width_);
+        error_sum_ += kernels_.masked_sum_max(error_row_, mask_row, 0, width_, &max_error_);
+    }
+
+    const detail::KernelTable& kernels_;
+    const FlipConfig& config_;
+    FlipResult& result_;
+    const int width_, height_;
+    const std::size_t plane_size_;
+    const Filters filters_;
+    const int pad_;
+    const detail::FlipColourConstants colour_constants_;
+    const detail::RowRing ring_;
+    const std::size_t ring_stride_, ring_size_, row_stride_, padded_stride_;
+    const detail::ColumnOffsets columns_;
+    std::vector<int> window_slots_;
+    const Image* images_[2];
+    std::unique_ptr<float[]> storage_;
+    float* rings_[2][kPlaneCount];
+    float* padded_[kChannelCount];
+    float* srgb_row_[3];
+    float* outputs_[2][2][kOutputCount];  // [output row y or y + 1][image][output]
+    float* error_row_ = nullptr;
+    ErrorPool pool_;
+    std::vector<float> kept_errors_;
+    double error_sum_ = 0.0;
+    float max_error_ = 0.0f;
+};
+
+// The result for two images with identical pixels: every filtered difference is 0, so is every
+// pixel's error.
+FlipResult identicalImagesResult(const Image& reference, const FlipConfig& config) {
+    FlipResult result;
+    const std::size_t pixels = static_cast<std::size_t>(reference.width) * reference.height;
+    std::size_t counted = pixels;
+    if (config.mask) {
+        counted = 0;
+        for (std::size_t i = 0; i < pixels; ++i) counted += config.mask->values[i] != 0;
+    }
+    if (counted == 0) {
+        result.error = "the mask selects no pixels; FLIP statistics are undefined";
+        return result;
+    }
+    if (config.want_map) result.error_map.assign(pixels, 0.0f);
+    result.ok = true;
+    result.width = reference.width;
+    result.height = reference.height;
+    result.pixel_count = counted;
+    return result;
+}
+
 }  // namespace
 
 double flipPixelsPerDegree(double distance_m, double resolution_x, double monitor_width_m) {
@@ -271,183 +492,22 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
         result.error = "FLIP pixels_per_degree must be a positive number";
         return result;
     }
+    if (detail::identicalPixels(reference, test)) return identicalImagesResult(reference, config);
 
-    if (detail::identicalPixels(reference, test)) {
-        // Equal images: every filtered difference is 0, so is every pixel's error.
-        const std::size_t pixels = static_cast<std::size_t>(reference.width) * reference.height;
-        std::size_t counted = pixels;
-        if (config.mask) {
-            counted = 0;
-            for (std::size_t i = 0; i < pixels; ++i) counted += config.mask->values[i] != 0;
-        }
-        if (counted == 0) {
-            result.error = "the mask selects no pixels; FLIP statistics are undefined";
-            return result;
-        }
-        if (config.want_map) result.error_map.assign(pixels, 0.0f);
-        result.ok = true;
-        result.width = reference.width;
-        result.height = reference.height;
-        result.pixel_count = counted;
-        return result;
-    }
-    const detail::KernelTable& kernels = detail::kernels();
     const int width = reference.width;
     const int height = reference.height;
     const std::size_t plane_size = static_cast<std::size_t>(width) * height;
-    const Filters filters = makeFilters(config.pixels_per_degree);
-    const int pad = filters.pad_radius;
-
-    // Largest possible colour distance (green against blue), and where redistribution bends.
-    const float cmax =
-        static_cast<float>(std::pow(hyab(linearRgbToHuntLab(0, 1, 0), linearRgbToHuntLab(0, 0, 1)), kQc));
-    const float pccmax = kPc * cmax;
-    const detail::FlipColourConstants colour_constants{pccmax, kPt / pccmax, (1.0f - kPt) / (cmax - pccmax),
-                                                       kPt};
-
-    // Buffers, in one allocation: per image seven rings of horizontally filtered rows
-    // (filter.h; kY holds the filtered luminance, not Y), the padded rows of the three channels being
-    // filtered, the deinterleaved sRGB row, per image eight vertically filtered rows, and the error row. Rows
-    // are padded to whole vector groups (kernels.h) and everything is zeroed, so the groups past the end of
-    // a row compute harmless values.
-    enum Plane { kY, kCx, kBy1, kBy2, kGauss, kFirst, kSecond, kPlaneCount };
-    enum Channel { kChannelCx, kChannelCz, kChannelLuminance, kChannelCount };
-    enum Output { kOutY, kOutCx, kOutBy1, kOutBy2, kOutDx, kOutDdx, kOutDy, kOutDdy, kOutputCount };
-    const detail::RowRing ring(height, pad, detail::Border::ClampToEdge);
-    const std::size_t ring_stride = detail::ringStride(width);
-    const std::size_t ring_size = ring_stride * ring.slots();
-    const std::size_t row_stride = detail::paddedRowLength(width);
-    const std::size_t padded_stride = detail::paddedRowLength(width + 2 * pad);
-    const std::size_t total = 2 * kPlaneCount * ring_size + kChannelCount * padded_stride +
-                              (3 + 2 * 2 * kOutputCount + 1) * row_stride;
-    std::unique_ptr<float[]> storage(new float[total]);
-    std::fill(storage.get(), storage.get() + total, 0.0f);
-    float* cursor = storage.get();
-    auto take = [&cursor](std::size_t n) {
-        float* p = cursor;
-        cursor += n;
-        return p;
-    };
-    float* rings[2][kPlaneCount];
-    for (auto& image_rings : rings) {
-        for (float*& p : image_rings) p = take(ring_size);
-    }
-    float* padded[kChannelCount];
-    for (float*& p : padded) p = take(padded_stride);
-    float* srgb_row[3];
-    for (float*& p : srgb_row) p = take(row_stride);
-    float* outputs[2][2][kOutputCount];  // [output row y or y + 1][image][output]
-    for (auto& row_outputs : outputs) {
-        for (auto& image_outputs : row_outputs) {
-            for (float*& p : image_outputs) p = take(row_stride);
-        }
-    }
-    float* error_row = take(row_stride);
-    const detail::ColumnOffsets columns(pad);
-    std::vector<int> window_slots(2 * pad + 2);
-
-    // Steps 1 and 2 for image row y of both images: colour conversion, horizontal filtering.
-    const Image* images[2] = {&reference, &test};
-    auto filter_row = [&](int y) {
-        const std::size_t slot = static_cast<std::size_t>(y % ring.slots()) * ring_stride;
-        for (int which = 0; which < 2; ++which) {
-            const Image& image = *images[which];
-            const int channels = image.channels;
-            const float* row = &image.pixels[static_cast<std::size_t>(y) * width * channels];
-            kernels.deinterleave_rgb(row, channels, width, srgb_row[0], srgb_row[1], srgb_row[2]);
-            kernels.flip_colour_row(srgb_row, width, padded[kChannelCx] + pad, padded[kChannelCz] + pad,
-                                    padded[kChannelLuminance] + pad);
-            for (float* p : padded) detail::fillBorders(p, width, pad, detail::Border::ClampToEdge);
-
-            float* const* out = rings[which];
-            auto taps = [&](Channel channel, const detail::Kernel& kernel) {
-                return detail::horizontalTaps(padded[channel], pad, kernel.radius, columns);
-            };
-            detail::filterEven(taps(kChannelCx, filters.red_green), 0, width, filters.red_green,
-                               out[kCx] + slot);
-            detail::filterEvenEven(taps(kChannelCz, filters.blue_yellow1), 0, width, filters.blue_yellow1,
-                                   filters.blue_yellow2, out[kBy1] + slot, out[kBy2] + slot);
-            detail::filterEvenEvenOddEven(taps(kChannelLuminance, filters.luminance_gauss), 0, width,
-                                          filters.luminance_achromatic, filters.luminance_gauss,
-                                          filters.luminance_first, filters.luminance_second, out[kY] + slot,
-                                          out[kGauss] + slot, out[kFirst] + slot, out[kSecond] + slot);
-        }
-    };
-
-    // Step 3: vertical passes and the per-pixel error, two output rows at a time.
-    if (config.want_map) result.error_map.resize(plane_size);
-    // Statistics as the rows come. The percentiles need a second look at the errors: the
-    // error map when there is one, otherwise a copy of the counted errors.
-    ErrorPool pool;
-    std::vector<float> kept_errors;
-    if (!config.want_map) kept_errors.reserve(plane_size);
-    double error_sum = 0.0;
-    float max_error = 0.0f;
-    auto finish_row = [&](int y, float* const* reference_rows, float* const* test_rows) {
-        kernels.flip_error_row(reference_rows, test_rows, 0, width, colour_constants, error_row);
-        const std::size_t row_start = static_cast<std::size_t>(y) * width;
-        const std::uint8_t* mask_row = config.mask ? config.mask->values.data() + row_start : nullptr;
-        if (config.want_map) {
-            std::copy(error_row, error_row + width, result.error_map.begin() + row_start);
-        } else if (mask_row == nullptr) {
-            kept_errors.insert(kept_errors.end(), error_row, error_row + width);
-        } else {
-            for (int i = 0; i < width; ++i) {
-                if (mask_row[i]) kept_errors.push_back(error_row[i]);
-            }
-        }
-        pool.addRow(error_row, mask_row, width);
-        error_sum += kernels.masked_sum_max(error_row, mask_row, 0, width, &max_error);
-    };
-    int next_row = 0;
-    for (int y = 0; y < height; y += 2) {
-        for (; next_row <= ring.lastRowNeeded(y); ++next_row) filter_row(next_row);
-        ring.window(y, window_slots.data());
-        const bool pair = y + 1 < height;
-        for (int which = 0; which < 2; ++which) {
-            float* const* in = rings[which];
-            float* const* out0 = outputs[0][which];
-            float* const* out1 = outputs[1][which];
-            auto taps = [&](Plane plane, const detail::Kernel& kernel) {
-                return ring.taps(in[plane], ring_stride, window_slots.data(), kernel.radius);
-            };
-            // One Gaussian pass per plane, except on the luminance's horizontal Gaussian, which
-            // gets the first and second derivative (d/dy, d^2/dy^2); d/dx comes from the
-            // horizontal derivative planes with a Gaussian down the columns.
-            const struct {
-                Plane plane;
-                const detail::Kernel* kernel;
-                Output output;
-            } singles[] = {{kY, &filters.achromatic, kOutY},       {kCx, &filters.red_green, kOutCx},
-                           {kBy1, &filters.blue_yellow1, kOutBy1}, {kBy2, &filters.blue_yellow2, kOutBy2},
-                           {kFirst, &filters.gauss, kOutDx},       {kSecond, &filters.gauss, kOutDdx}};
-            for (const auto& pass : singles) {
-                if (pair) {
-                    detail::filterEvenRows2(taps(pass.plane, *pass.kernel), 0, width, *pass.kernel,
-                                            out0[pass.output], out1[pass.output]);
-                } else {
-                    detail::filterEven(taps(pass.plane, *pass.kernel), 0, width, *pass.kernel,
-                                       out0[pass.output]);
-                }
-            }
-            if (pair) {
-                detail::filterOddEvenRows2(taps(kGauss, filters.first_derivative), 0, width,
-                                           filters.first_derivative, filters.second_derivative, out0[kOutDy],
-                                           out0[kOutDdy], out1[kOutDy], out1[kOutDdy]);
-            } else {
-                detail::filterOddEven(taps(kGauss, filters.first_derivative), 0, width,
-                                      filters.first_derivative, filters.second_derivative, out0[kOutDy],
-                                      out0[kOutDdy]);
-            }
-        }
-        finish_row(y, outputs[0][0], outputs[0][1]);
-        if (pair) finish_row(y + 1, outputs[1][0], outputs[1][1]);
-    }
-
+    FlipPasses passes(reference, test, config, result);
+    passes.run();
+    const ErrorPool& pool = passes.pool();
     if (pool.count() == 0) {
         result.error = "the mask selects no pixels; FLIP statistics are undefined";
         return result;
     }
+
+    // Step 4, pooling: the mean, the maximum and the weighted quartiles.
+    const detail::KernelTable& kernels = detail::kernels();
+    const std::vector<float>& kept_errors = passes.keptErrors();
     const double fractions[3] = {0.25, 0.5, 0.75};
     double percentiles[3];
     std::vector<float> scratch(static_cast<std::size_t>(std::max(width, 1)));
@@ -472,11 +532,11 @@ FlipResult computeFlip(const Image& reference, const Image& test, const FlipConf
     result.width = width;
     result.height = height;
     result.pixel_count = pool.count();
-    result.mean = error_sum / static_cast<double>(pool.count());
+    result.mean = passes.errorSum() / static_cast<double>(pool.count());
     result.weighted_p25 = percentiles[0];
     result.weighted_median = percentiles[1];
     result.weighted_p75 = percentiles[2];
-    result.max_error = max_error;
+    result.max_error = passes.maxError();
     return result;
 }
 

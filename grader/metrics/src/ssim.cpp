@@ -13,7 +13,7 @@
 // 1 on flat images), and float for the moments of d alone still by 1.2e-4 on flat regions far
 // apart in value. In double the agreement is ~1e-8, at twice the filtering time. The one
 // exception: where every difference d in a window is at most 1/16, the error bound above is
-// 256 times smaller for the moments of d, and those run in float (see computeSsim).
+// 256 times smaller for the moments of d, and those run in float (see SsimPasses).
 //
 // Per channel the moments come from a horizontal pass into rings of rows and a vertical pass
 // for two output rows at a time (filter.h); the SSIM of those rows is formed right away, so no
@@ -109,6 +109,189 @@ class MomentPair {
     std::vector<T> storage_;
 };
 
+// The two passes and the SSIM formula over one image pair whose inputs computeSsim has checked:
+// rows are filtered horizontally into rings as the vertical pass needs them, and the SSIM of
+// each pair of output rows is formed at once, summed per channel and added into the map.
+class SsimPasses {
+  public:
+    SsimPasses(const Image& reference, const Image& test, const SsimConfig& config,
+               const detail::Kernel& window, int channel_count, SsimResult& result)
+        : reference_(reference),
+          test_(test),
+          config_(config),
+          window_(window),
+          width_(reference.width),
+          height_(reference.height),
+          radius_(window.radius),
+          channel_count_(channel_count),
+          c1_((config.k1 * config.data_range) * (config.k1 * config.data_range)),
+          c2_((config.k2 * config.data_range) * (config.k2 * config.data_range)),
+          kernels_(detail::kernels()),
+          ring_(height_, radius_, detail::Border::Reflect),
+          columns_(radius_),
+          sums_(width_, radius_, ring_),
+          differences_(width_, radius_, ring_),
+          small_differences_(width_, radius_, ring_),
+          slot_state_(static_cast<std::size_t>(3 * ring_.slots()), kDouble),
+          row_stride_(detail::paddedRowLength(width_)),
+          rows_(7 * row_stride_, 0.0f),
+          window_slots_(2 * radius_ + 2),
+          result_(result) {
+        for (int channel = 0; channel < 3; ++channel) {
+            reference_channels_[channel] = &rows_[channel * row_stride_];
+            test_channels_[channel] = &rows_[(3 + channel) * row_stride_];
+        }
+        ssim_row_ = &rows_[6 * row_stride_];
+        if (config.want_map) result.map.assign(static_cast<std::size_t>(width_) * height_, 0.0f);
+    }
+
+    // Vertical pass and the SSIM formula, two output rows at a time; the sums of each channel's
+    // SSIM over the counted pixels into `channel_sums`.
+    void run(double channel_sums[3]) {
+        channel_sums_ = channel_sums;
+        int next_row = 0;
+        for (int y = 0; y < height_; y += 2) {
+            for (; next_row <= ring_.lastRowNeeded(y); ++next_row) filterRow(next_row);
+            ring_.window(y, window_slots_.data());
+            const bool pair = y + 1 < height_;
+            for (int channel = 0; channel < channel_count_; ++channel) {
+                const bool small = filterColumns(channel, pair);
+                finishRow(y, channel, 0, small);
+                if (pair) finishRow(y + 1, channel, 1, small);
+            }
+        }
+    }
+
+  private:
+    // Rows whose differences d are all small get the moments of d in float, both passes (eight
+    // lanes instead of four): a float variance E[d^2] - E[d]^2 is off by about 1e-6 of the
+    // largest d^2 in the window, so with |d| <= 1/16 by at most ~4e-9, which moves SSIM by at
+    // most ~4e-9 / C2 = 5e-6 (measured 1.2e-6 per pixel for a flat offset of 0.0624, against
+    // 1.3e-7 all in double: grader/metrics/tests/ssim_test.cpp). Where a window holds a row with
+    // a larger difference, its vertical pass runs in double, the small rows widened (exactly)
+    // into the double ring first. Rendered images mostly agree with their references to within
+    // a few levels, so most windows take the float passes.
+    static constexpr float kSmallDifference = 1.0f / 16.0f;
+    enum SlotState : std::uint8_t { kDouble, kFloat, kFloatAndDouble };
+
+    // Horizontal pass of image row y, every channel, into the rings.
+    void filterRow(int y) {
+        const int slot = y % ring_.slots();
+        kernels_.deinterleave_rgb(
+            &reference_.pixels[static_cast<std::size_t>(y) * width_ * reference_.channels],
+            reference_.channels, width_, reference_channels_[0], reference_channels_[1],
+            reference_channels_[2]);
+        kernels_.deinterleave_rgb(&test_.pixels[static_cast<std::size_t>(y) * width_ * test_.channels],
+                                  test_.channels, width_, test_channels_[0], test_channels_[1],
+                                  test_channels_[2]);
+        for (int channel = 0; channel < channel_count_; ++channel) {
+            const float* x = reference_channels_[channel];
+            const float* y_values = test_channels_[channel];
+            kernels_.ssim_inputs_row(x, y_values, width_, false, sums_.input(channel, 0) + radius_,
+                                     sums_.input(channel, 1) + radius_);
+            sums_.filterRow(channel, slot, window_, columns_);
+            std::uint8_t& state = slot_state_[static_cast<std::size_t>(channel * ring_.slots() + slot)];
+            if (kernels_.ssim_small_differences_row(x, y_values, width_, kSmallDifference,
+                                                    small_differences_.input(channel, 0) + radius_,
+                                                    small_differences_.input(channel, 1) + radius_)) {
+                small_differences_.filterRow(channel, slot, window_, columns_);
+                state = kFloat;
+            } else {
+                kernels_.ssim_inputs_row(x, y_values, width_, true, differences_.input(channel, 0) + radius_,
+                                         differences_.input(channel, 1) + radius_);
+                differences_.filterRow(channel, slot, window_, columns_);
+                state = kDouble;
+            }
+        }
+    }
+
+    // Vertical passes of a channel for output rows y and (if `pair`) y + 1; returns whether the
+    // moments of d are in small_differences_ (float) rather than differences_ (double).
+    bool filterColumns(int channel, bool pair) {
+        sums_.filterColumns(channel, ring_, window_slots_.data(), pair, window_);
+        const int rows_used = pair ? 2 * radius_ + 2 : 2 * radius_ + 1;
+        std::uint8_t* states = &slot_state_[static_cast<std::size_t>(channel * ring_.slots())];
+        bool all_small = true;
+        for (int i = 0; i < rows_used; ++i) all_small = all_small && states[window_slots_[i]] != kDouble;
+        if (all_small) {
+            small_differences_.filterColumns(channel, ring_, window_slots_.data(), pair, window_);
+            return true;
+        }
+        for (int i = 0; i < rows_used; ++i) {
+            const int slot = window_slots_[i];
+            if (states[slot] != kFloat) continue;
+            for (int which = 0; which < 2; ++which) {
+                kernels_.widen_row(small_differences_.ringRow(channel, which, slot), width_,
+                                   differences_.ringRow(channel, which, slot));
+            }
+            states[slot] = kFloatAndDouble;
+        }
+        differences_.filterColumns(channel, ring_, window_slots_.data(), pair, window_);
+        return false;
+    }
+
+    // The SSIM of one output row from its moments, into the map and the channel's sum.
+    void finishRow(int y, int channel, int pair, bool small) {
+        const double* sum_moments[2] = {sums_.filtered(pair, 0), sums_.filtered(pair, 1)};
+        if (small) {
+            const float* difference_moments[2] = {small_differences_.filtered(pair, 0),
+                                                  small_differences_.filtered(pair, 1)};
+            kernels_.ssim_row_small_differences(sum_moments, difference_moments, 0, width_, c1_, c2_,
+                                                ssim_row_);
+        } else {
+            const double* difference_moments[2] = {differences_.filtered(pair, 0),
+                                                   differences_.filtered(pair, 1)};
+            kernels_.ssim_row(sum_moments, difference_moments, 0, width_, c1_, c2_, ssim_row_);
+        }
+        const std::size_t row_start = static_cast<std::size_t>(y) * width_;
+        if (config_.want_map) {
+            float* map_row = &result_.map[row_start];
+            for (int i = 0; i < width_; ++i) map_row[i] += ssim_row_[i];
+        }
+        if (y >= radius_ && y < height_ - radius_) {
+            const std::uint8_t* mask_row = config_.mask ? config_.mask->values.data() + row_start : nullptr;
+            float unused_max = 0.0f;
+            channel_sums_[channel] +=
+                kernels_.masked_sum_max(ssim_row_, mask_row, radius_, width_ - radius_, &unused_max);
+        }
+    }
+
+    const Image& reference_;
+    const Image& test_;
+    const SsimConfig& config_;
+    const detail::Kernel& window_;
+    const int width_, height_, radius_, channel_count_;
+    const double c1_, c2_;
+    const detail::KernelTable& kernels_;
+    const detail::RowRing ring_;
+    const detail::ColumnOffsets columns_;
+    MomentPair<double> sums_;         // s = x + y and s^2
+    MomentPair<double> differences_;  // d = x - y and d^2
+    MomentPair<float> small_differences_;
+    std::vector<std::uint8_t> slot_state_;
+    const std::size_t row_stride_;
+    std::vector<float> rows_;  // the channels of a reference row and a test row, and an SSIM row
+    float* reference_channels_[3];
+    float* test_channels_[3];
+    float* ssim_row_;
+    std::vector<int> window_slots_;
+    SsimResult& result_;
+    double* channel_sums_ = nullptr;
+};
+
+// The pixels the mean counts: all but `radius` on each side (skimage's crop: there the window
+// reaches past the image and the statistics depend on the border rule), within the mask.
+std::size_t countedPixels(int width, int height, int radius, const Mask* mask) {
+    if (mask == nullptr) return static_cast<std::size_t>(width - 2 * radius) * (height - 2 * radius);
+    std::size_t counted = 0;
+    for (int y = radius; y < height - radius; ++y) {
+        for (int x = radius; x < width - radius; ++x) {
+            counted += mask->values[static_cast<std::size_t>(y) * width + x] != 0;
+        }
+    }
+    return counted;
+}
+
 }  // namespace
 
 SsimResult computeSsim(const Image& reference, const Image& test, const SsimConfig& config) {
@@ -130,19 +313,7 @@ SsimResult computeSsim(const Image& reference, const Image& test, const SsimConf
                        std::to_string(height);
         return result;
     }
-
-    // The mean leaves out `radius` pixels on each side (skimage's crop): there the window
-    // reaches past the image and the statistics depend on the border rule.
-    std::size_t counted = 0;
-    if (config.mask == nullptr) {
-        counted = static_cast<std::size_t>(width - 2 * radius) * (height - 2 * radius);
-    } else {
-        for (int y = radius; y < height - radius; ++y) {
-            for (int x = radius; x < width - radius; ++x) {
-                counted += config.mask->values[static_cast<std::size_t>(y) * width + x] != 0;
-            }
-        }
-    }
+    const std::size_t counted = countedPixels(width, height, radius, config.mask);
     if (counted == 0) {
         result.error = "the mask selects no pixels inside the SSIM border; SSIM is undefined";
         return result;
@@ -159,125 +330,8 @@ SsimResult computeSsim(const Image& reference, const Image& test, const SsimConf
         if (config.want_map) result.map.assign(static_cast<std::size_t>(width) * height, 1.0f);
         return result;
     }
-    const double c1 = (config.k1 * config.data_range) * (config.k1 * config.data_range);
-    const double c2 = (config.k2 * config.data_range) * (config.k2 * config.data_range);
-    const detail::KernelTable& kernels = detail::kernels();
-    const detail::RowRing ring(height, radius, detail::Border::Reflect);
-    const detail::ColumnOffsets columns(radius);
-    MomentPair<double> sums(width, radius, ring);         // s = x + y and s^2
-    MomentPair<double> differences(width, radius, ring);  // d = x - y and d^2
-    // Rows whose differences d are all small get the moments of d in float, both passes (eight
-    // lanes instead of four): a float variance E[d^2] - E[d]^2 is off by about 1e-6 of the
-    // largest d^2 in the window, so with |d| <= 1/16 by at most ~4e-9, which moves SSIM by at
-    // most ~4e-9 / C2 = 5e-6 (measured 1.2e-6 per pixel for a flat offset of 0.0624, against
-    // 1.3e-7 all in double: tests/ssim_test.cpp). Where a window holds a row with a larger
-    // difference, its vertical pass runs in double, the small rows widened (exactly) into the
-    // double ring first. Rendered images mostly agree with their references to within a few
-    // levels, so most windows take the float passes.
-    constexpr float kSmallDifference = 1.0f / 16.0f;
-    MomentPair<float> small_differences(width, radius, ring);
-    enum SlotState : std::uint8_t { kDouble, kFloat, kFloatAndDouble };
-    std::vector<std::uint8_t> slot_state(static_cast<std::size_t>(3 * ring.slots()), kDouble);
-    const std::size_t row_stride = detail::paddedRowLength(width);
-    std::vector<float> rows(7 * row_stride, 0.0f);
-    float* reference_channels[3] = {&rows[0], &rows[row_stride], &rows[2 * row_stride]};
-    float* test_channels[3] = {&rows[3 * row_stride], &rows[4 * row_stride], &rows[5 * row_stride]};
-    float* ssim_row = &rows[6 * row_stride];
-    std::vector<int> window_slots(2 * radius + 2);
-    if (config.want_map) result.map.assign(static_cast<std::size_t>(width) * height, 0.0f);
-
-    // Horizontal pass of image row y, every channel, into the rings.
-    auto filter_row = [&](int y) {
-        const int slot = y % ring.slots();
-        kernels.deinterleave_rgb(&reference.pixels[static_cast<std::size_t>(y) * width * reference.channels],
-                                 reference.channels, width, reference_channels[0], reference_channels[1],
-                                 reference_channels[2]);
-        kernels.deinterleave_rgb(&test.pixels[static_cast<std::size_t>(y) * width * test.channels],
-                                 test.channels, width, test_channels[0], test_channels[1], test_channels[2]);
-        for (int channel = 0; channel < channel_count; ++channel) {
-            const float* x = reference_channels[channel];
-            const float* y_values = test_channels[channel];
-            kernels.ssim_inputs_row(x, y_values, width, false, sums.input(channel, 0) + radius,
-                                    sums.input(channel, 1) + radius);
-            sums.filterRow(channel, slot, window, columns);
-            std::uint8_t& state = slot_state[static_cast<std::size_t>(channel * ring.slots() + slot)];
-            if (kernels.ssim_small_differences_row(x, y_values, width, kSmallDifference,
-                                                   small_differences.input(channel, 0) + radius,
-                                                   small_differences.input(channel, 1) + radius)) {
-                small_differences.filterRow(channel, slot, window, columns);
-                state = kFloat;
-            } else {
-                kernels.ssim_inputs_row(x, y_values, width, true, differences.input(channel, 0) + radius,
-                                        differences.input(channel, 1) + radius);
-                differences.filterRow(channel, slot, window, columns);
-                state = kDouble;
-            }
-        }
-    };
-
-    // Vertical passes of a channel for output rows y and (if `pair`) y + 1; returns whether the
-    // moments of d are in small_differences (float) rather than differences (double).
-    auto filter_columns = [&](int channel, bool pair) {
-        sums.filterColumns(channel, ring, window_slots.data(), pair, window);
-        const int rows_used = pair ? 2 * radius + 2 : 2 * radius + 1;
-        std::uint8_t* states = &slot_state[static_cast<std::size_t>(channel * ring.slots())];
-        bool all_small = true;
-        for (int i = 0; i < rows_used; ++i) all_small = all_small && states[window_slots[i]] != kDouble;
-        if (all_small) {
-            small_differences.filterColumns(channel, ring, window_slots.data(), pair, window);
-            return true;
-        }
-        for (int i = 0; i < rows_used; ++i) {
-            const int slot = window_slots[i];
-            if (states[slot] != kFloat) continue;
-            for (int which = 0; which < 2; ++which) {
-                kernels.widen_row(small_differences.ringRow(channel, which, slot), width,
-                                  differences.ringRow(channel, which, slot));
-            }
-            states[slot] = kFloatAndDouble;
-        }
-        differences.filterColumns(channel, ring, window_slots.data(), pair, window);
-        return false;
-    };
-
-    // The SSIM of one output row from its moments, into the map and the channel's sum.
     double channel_sums[3] = {0.0, 0.0, 0.0};
-    auto finish_row = [&](int y, int channel, int pair, bool small) {
-        const double* sum_moments[2] = {sums.filtered(pair, 0), sums.filtered(pair, 1)};
-        if (small) {
-            const float* difference_moments[2] = {small_differences.filtered(pair, 0),
-                                                  small_differences.filtered(pair, 1)};
-            kernels.ssim_row_small_differences(sum_moments, difference_moments, 0, width, c1, c2, ssim_row);
-        } else {
-            const double* difference_moments[2] = {differences.filtered(pair, 0),
-                                                   differences.filtered(pair, 1)};
-            kernels.ssim_row(sum_moments, difference_moments, 0, width, c1, c2, ssim_row);
-        }
-        const std::size_t row_start = static_cast<std::size_t>(y) * width;
-        if (config.want_map) {
-            float* map_row = &result.map[row_start];
-            for (int i = 0; i < width; ++i) map_row[i] += ssim_row[i];
-        }
-        if (y >= radius && y < height - radius) {
-            const std::uint8_t* mask_row = config.mask ? config.mask->values.data() + row_start : nullptr;
-            float unused_max = 0.0f;
-            channel_sums[channel] +=
-                kernels.masked_sum_max(ssim_row, mask_row, radius, width - radius, &unused_max);
-        }
-    };
-
-    // Vertical pass and the SSIM formula, two output rows at a time.
-    int next_row = 0;
-    for (int y = 0; y < height; y += 2) {
-        for (; next_row <= ring.lastRowNeeded(y); ++next_row) filter_row(next_row);
-        ring.window(y, window_slots.data());
-        const bool pair = y + 1 < height;
-        for (int channel = 0; channel < channel_count; ++channel) {
-            const bool small = filter_columns(channel, pair);
-            finish_row(y, channel, 0, small);
-            if (pair) finish_row(y + 1, channel, 1, small);
-        }
-    }
+    SsimPasses(reference, test, config, window, channel_count, result).run(channel_sums);
 
     double channel_total = 0.0;
     for (int channel = 0; channel < channel_count; ++channel) {
