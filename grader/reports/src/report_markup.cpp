@@ -758,11 +758,14 @@ std::string gradescopeGoalHtml(const ReportLab& lab, const ReportGoal& goal, Bud
         }
         if (first != nullptr) shown = *first;
         std::string row;
-        for (const auto& [path, alt] :
-             {std::make_pair(&shown.student_image, "yours"),
-              std::make_pair(&shown.reference_image, "reference"),
-              std::make_pair(&shown.signed_image, "orange too bright, blue too dark"),
-              std::make_pair(&shown.diff_image, "FLIP error")}) {
+        // A named array, not a braced list of make_pair temporaries in the loop header: GCC 14's
+        // -Wdangling-reference takes a reference into such a list for one that outlives it.
+        const std::pair<const std::string*, const char*> pictures[] = {
+            {&shown.student_image, "yours"},
+            {&shown.reference_image, "reference"},
+            {&shown.signed_image, "orange too bright, blue too dark"},
+            {&shown.diff_image, "FLIP error"}};
+        for (const auto& [path, alt] : pictures) {
             const std::string uri = budget.take(*path);
             if (!uri.empty())
                 row += "<img src=\"" + uri + "\" width=\"160\" alt=\"" + alt + "\" title=\"" + alt + "\"> ";
