@@ -1,0 +1,89 @@
+// Keys and mouse: the keys the panel lists (view mode, scene, image, input, split, reset,
+// render again, screenshot, quit) and orbit and zoom over the picture. What they change is
+// picked up by the main loop; nothing is drawn here.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "shaderlab/gl/gl.h"
+// glad above provides the GL declarations; GLFW must not include its own.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "viewer_window.h"
+
+namespace shaderlab::viewer::detail {
+
+void Viewer::handleKeys() {
+    ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput) return;
+    if (ImGui::IsKeyPressed(GLFW_KEY_1)) mode_ = ViewMode::Student;
+    if (ImGui::IsKeyPressed(GLFW_KEY_2)) mode_ = ViewMode::Reference;
+    if (ImGui::IsKeyPressed(GLFW_KEY_3)) mode_ = ViewMode::Diff;
+    if (ImGui::IsKeyPressed(GLFW_KEY_4)) mode_ = ViewMode::Split;
+    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) changeScene(1);
+    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) changeScene(-1);
+    const std::vector<PassImage>* mine = studentPasses();
+    if (mine && !mine->empty() && (ImGui::IsKeyPressed(GLFW_KEY_DOWN) || ImGui::IsKeyPressed(GLFW_KEY_UP))) {
+        int index = -1;
+        for (std::size_t i = 0; i < mine->size(); ++i)
+            if (shown_.student_pass == &(*mine)[i] && input_ < 0) index = static_cast<int>(i);
+        if (index < 0) {
+            for (std::size_t i = 0; i < mine->size(); ++i)
+                if (imageKey((*mine)[i]) == selected_) index = static_cast<int>(i);
+        }
+        if (index < 0) index = static_cast<int>(mine->size()) - 1;
+        index += ImGui::IsKeyPressed(GLFW_KEY_DOWN) ? 1 : -1;
+        index = std::clamp(index, 0, static_cast<int>(mine->size()) - 1);
+        selected_ = imageKey((*mine)[static_cast<std::size_t>(index)]);
+        input_ = -1;
+        dirty_ = scroll_to_shown_ = true;
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_TAB) && shown_.student_pass) {
+        const PassSpec* pass = nullptr;
+        if (mine)
+            for (const PassImage& p : *mine)
+                if (imageKey(p) == (selected_.empty() ? imageKey(*shown_.student_pass) : selected_))
+                    pass = spec_.findPass(p.pass);
+        if (pass && !pass->inputs.empty()) {
+            if (selected_.empty()) selected_ = imageKey(*shown_.student_pass);
+            input_ = input_ + 1 >= static_cast<int>(pass->inputs.size()) ? -1 : input_ + 1;
+            dirty_ = true;
+        }
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_R) && orbit_.any()) {
+        orbit_ = CameraOrbit();
+        requestStudent(0);
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT_BRACKET)) split_ = std::max(0.0f, split_ - 0.05f);
+    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT_BRACKET)) split_ = std::min(1.0f, split_ + 0.05f);
+    if (ImGui::IsKeyPressed(GLFW_KEY_F5)) requestStudent(0);
+    if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
+        const std::string stem =
+            "shaderlab-" + spec_.id + "-" + sceneName() + "-" + std::to_string(++screenshot_count_);
+        saveScreenshots(stem + ".png", stem + "-window.png");
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) || ImGui::IsKeyPressed(GLFW_KEY_Q))
+        glfwSetWindowShouldClose(window_, GLFW_TRUE);
+}
+
+// Orbit and zoom: drag and wheel over the picture (the item drawn last).
+void Viewer::orbitByMouse() {
+    ImGuiIO& io = ImGui::GetIO();
+    if (ImGui::IsItemHovered() || ImGui::IsItemActive()) {
+        bool moved = false;
+        if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left) &&
+            (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+            orbit_.yaw_deg -= io.MouseDelta.x * 0.5f;
+            orbit_.pitch_deg = std::clamp(orbit_.pitch_deg + io.MouseDelta.y * 0.5f, -170.0f, 170.0f);
+            moved = true;
+        }
+        if (io.MouseWheel != 0.0f) {
+            orbit_.zoom = std::clamp(orbit_.zoom * std::pow(1.1f, io.MouseWheel), 0.2f, 8.0f);
+            moved = true;
+        }
+        if (moved) requestStudent(0);
+    }
+}
+
+}  // namespace shaderlab::viewer::detail

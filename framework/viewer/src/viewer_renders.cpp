@@ -1,0 +1,182 @@
+// The viewer's renders: what it asks of the render server (the student's shaders for the scene
+// and camera on screen, and the reference solution's, or the stored goldens when there is no
+// reference solution) and what it does with the answers. It draws nothing and judges nothing.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "grader/reports/report.h"
+#include "shaderlab/grading/grading.h"
+#include "viewer_window.h"
+
+namespace fs = std::filesystem;
+
+namespace shaderlab::viewer::detail {
+
+namespace {
+
+bool sameOrbit(const CameraOrbit& a, const CameraOrbit& b) {
+    return a.yaw_deg == b.yaw_deg && a.pitch_deg == b.pitch_deg && a.zoom == b.zoom;
+}
+
+}  // namespace
+
+const std::vector<PassImage>* Viewer::studentPasses() const {
+    if (!student_ || student_->render.scenes.empty()) return nullptr;
+    return &student_->render.scenes[0].passes;
+}
+
+// The reference for the picture on screen: the reference solution rendered for the same scene
+// and camera, or (graded view only) the stored goldens.
+const std::vector<PassImage>* Viewer::referencePasses() const {
+    if (!student_) return nullptr;
+    if (!opt_.reference_root.empty()) {
+        if (!reference_ || reference_->status != IsolatedStatus::Ok || reference_->render.scenes.empty() ||
+            reference_scene_ != student_scene_ || !sameOrbit(reference_orbit_, student_orbit_))
+            return nullptr;
+        return &reference_->render.scenes[0].passes;
+    }
+    if (student_orbit_.any()) return nullptr;
+    const auto it = goldens_.find(student_scene_);
+    return it == goldens_.end() ? nullptr : it->second.get();
+}
+
+// What keeps referencePasses() alive while the worker judges with it.
+std::shared_ptr<const void> Viewer::referenceOwner() const {
+    if (!opt_.reference_root.empty()) return reference_;
+    const auto it = goldens_.find(student_scene_);
+    return it == goldens_.end() ? nullptr : it->second;
+}
+
+std::string Viewer::timeoutCulprit(const IsolatedRender& r) const {
+    std::istringstream in(r.last_event);
+    std::string kind, a, b;
+    in >> kind >> a >> b;
+    if (kind == "compile") return a + " / " + b;
+    if (kind == "pass") {
+        if (const PassSpec* p = spec_.findPass(b))
+            return p->program.fragment + " (pass '" + b + "', with " + p->program.vertex + ")";
+        return "pass '" + b + "'";
+    }
+    return "your shaders";
+}
+
+void Viewer::requestStudent(std::int64_t save_ns) {
+    Job job;
+    job.kind = kStudent;
+    job.request.shader_dir = (fs::path(opt_.submission_root) / spec_.id).string();
+    job.request.containment_root = opt_.submission_root;
+    job.request.scene = sceneName();
+    job.request.orbit = orbit_;
+    job.request.timeout_s = opt_.timeout_s;
+    job.generation = generation_;
+    job.save_ns = save_ns;
+    queue_->submit(std::move(job));
+    requestReference();
+}
+
+void Viewer::requestReference() {
+    if (opt_.reference_root.empty()) {
+        const std::string scene = sceneName();
+        if (!goldens_.count(scene) && !golden_errors_.count(scene)) {
+            std::vector<PassImage> images;
+            std::string error;
+            if (loadGoldenScene(spec_, spec_.lab_dir, scene, &images, &error))
+                goldens_[scene] = std::make_shared<const std::vector<PassImage>>(std::move(images));
+            else
+                golden_errors_[scene] = error;
+        }
+        return;
+    }
+    if (reference_ && reference_scene_ == sceneName() && sameOrbit(reference_orbit_, orbit_)) return;
+    Job job;
+    job.kind = kReference;
+    job.request.shader_dir = (fs::path(opt_.reference_root) / spec_.id).string();
+    job.request.containment_root = opt_.reference_root;
+    job.request.scene = sceneName();
+    job.request.orbit = orbit_;
+    job.request.timeout_s = std::max(opt_.timeout_s, 30.0);
+    queue_->submit(std::move(job));
+}
+
+void Viewer::onStudent(const Finished& f) {
+    const IsolatedRender& r = f.result;
+    got_first_result_ = true;
+    const bool fresh_reload = f.job.save_ns != 0;
+    if (r.status == IsolatedStatus::Ok && !r.render.scenes.empty()) {
+        student_ = std::make_shared<const IsolatedRender>(r);
+        student_scene_ = f.job.request.scene;
+        student_orbit_ = f.job.request.orbit;
+        error_title_.clear();
+        error_text_.clear();
+        last_printed_error_.clear();
+        dirty_ = judge_dirty_ = true;
+        char line[256];
+        std::snprintf(line, sizeof line, "scene %s rendered in %.0f ms", student_scene_.c_str(), r.wall_ms);
+        status_line_ = line;
+        if (fresh_reload) {
+            const double latency_ms = static_cast<double>(nowNs() - f.job.save_ns) / 1e6;
+            std::printf("view: %s; on screen %.0f ms after the save\n", line, latency_ms);
+        } else {
+            std::printf("view: %s\n", line);
+        }
+    } else {
+        std::string title, text;
+        switch (r.status) {
+            case IsolatedStatus::CompileError:
+            case IsolatedStatus::LinkError:
+                title = r.status == IsolatedStatus::CompileError ? "Your shader does not compile"
+                                                                 : "Your shaders do not link";
+                break;
+            case IsolatedStatus::Timeout:
+                title = "Timed out: " + timeoutCulprit(r);
+                break;
+            case IsolatedStatus::Missing:
+                title = "A file is missing";
+                break;
+            default:
+                title = "The render failed (" + std::string(isolatedStatusName(r.status)) + ")";
+        }
+        for (const Diagnostic& d : r.render.diagnostics)
+            if (d.severity == "error" || r.status == IsolatedStatus::CompileError ||
+                r.status == IsolatedStatus::LinkError)
+                text += grader::formatDiagnostic(toReportDiagnostic(d)) + "\n";
+        if (text.empty() || r.status == IsolatedStatus::Timeout) text = r.message + "\n" + text;
+        error_title_ = title + (student_ ? " - the last good picture is shown" : "");
+        error_text_ = text;
+        const std::string printed = title + "\n" + text;
+        if (printed != last_printed_error_) {
+            std::printf("view: %s\n%s", title.c_str(), text.c_str());
+            last_printed_error_ = printed;
+        }
+        status_line_ = title;
+    }
+    if (fresh_reload) ++reloads_shown_;
+    std::fflush(stdout);
+}
+
+void Viewer::takeResults() {
+    for (Finished& f : queue_->take()) {
+        if (f.job.kind == kStudent) {
+            onStudent(f);
+        } else {
+            reference_error_.clear();
+            if (f.result.status != IsolatedStatus::Ok)
+                reference_error_ = "the reference solution did not render: " + f.result.message;
+            reference_ = std::make_shared<const IsolatedRender>(std::move(f.result));
+            reference_scene_ = f.job.request.scene;
+            reference_orbit_ = f.job.request.orbit;
+            dirty_ = judge_dirty_ = true;
+        }
+    }
+}
+
+std::string Viewer::changeScene(int delta) {
+    const int n = static_cast<int>(spec_.scenes.size());
+    scene_ = ((scene_ + delta) % n + n) % n;
+    requestStudent(0);
+    return sceneName();
+}
+
+}  // namespace shaderlab::viewer::detail
