@@ -12,19 +12,29 @@
 
 #include "viewer_window.h"
 
+// Dear ImGui names keys with ImGuiKey from 1.87 on (1.90, Debian 13's, takes nothing else); 1.86,
+// Debian 12's, takes the platform backend's key codes, here GLFW's.
+#if IMGUI_VERSION_NUM >= 18700
+#define VIEWER_KEY(imgui_name, glfw_code) ImGuiKey_##imgui_name
+#else
+#define VIEWER_KEY(imgui_name, glfw_code) glfw_code
+#endif
+
 namespace shaderlab::viewer::detail {
 
 void Viewer::handleKeys() {
     ImGuiIO& io = ImGui::GetIO();
     if (io.WantTextInput) return;
-    if (ImGui::IsKeyPressed(GLFW_KEY_1)) mode_ = ViewMode::Student;
-    if (ImGui::IsKeyPressed(GLFW_KEY_2)) mode_ = ViewMode::Reference;
-    if (ImGui::IsKeyPressed(GLFW_KEY_3)) mode_ = ViewMode::Diff;
-    if (ImGui::IsKeyPressed(GLFW_KEY_4)) mode_ = ViewMode::Split;
-    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) changeScene(1);
-    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) changeScene(-1);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(1, GLFW_KEY_1))) mode_ = ViewMode::Student;
+    if (ImGui::IsKeyPressed(VIEWER_KEY(2, GLFW_KEY_2))) mode_ = ViewMode::Reference;
+    if (ImGui::IsKeyPressed(VIEWER_KEY(3, GLFW_KEY_3))) mode_ = ViewMode::Diff;
+    if (ImGui::IsKeyPressed(VIEWER_KEY(4, GLFW_KEY_4))) mode_ = ViewMode::Split;
+    if (ImGui::IsKeyPressed(VIEWER_KEY(RightArrow, GLFW_KEY_RIGHT))) changeScene(1);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(LeftArrow, GLFW_KEY_LEFT))) changeScene(-1);
     const std::vector<PassImage>* mine = studentPasses();
-    if (mine && !mine->empty() && (ImGui::IsKeyPressed(GLFW_KEY_DOWN) || ImGui::IsKeyPressed(GLFW_KEY_UP))) {
+    if (mine && !mine->empty() &&
+        (ImGui::IsKeyPressed(VIEWER_KEY(DownArrow, GLFW_KEY_DOWN)) ||
+         ImGui::IsKeyPressed(VIEWER_KEY(UpArrow, GLFW_KEY_UP)))) {
         int index = -1;
         for (std::size_t i = 0; i < mine->size(); ++i)
             if (shown_.student_pass == &(*mine)[i] && input_ < 0) index = static_cast<int>(i);
@@ -33,13 +43,13 @@ void Viewer::handleKeys() {
                 if (imageKey((*mine)[i]) == selected_) index = static_cast<int>(i);
         }
         if (index < 0) index = static_cast<int>(mine->size()) - 1;
-        index += ImGui::IsKeyPressed(GLFW_KEY_DOWN) ? 1 : -1;
+        index += ImGui::IsKeyPressed(VIEWER_KEY(DownArrow, GLFW_KEY_DOWN)) ? 1 : -1;
         index = std::clamp(index, 0, static_cast<int>(mine->size()) - 1);
         selected_ = imageKey((*mine)[static_cast<std::size_t>(index)]);
         input_ = -1;
         dirty_ = scroll_to_shown_ = true;
     }
-    if (ImGui::IsKeyPressed(GLFW_KEY_TAB) && shown_.student_pass) {
+    if (ImGui::IsKeyPressed(VIEWER_KEY(Tab, GLFW_KEY_TAB)) && shown_.student_pass) {
         const PassSpec* pass = nullptr;
         if (mine)
             for (const PassImage& p : *mine)
@@ -51,19 +61,22 @@ void Viewer::handleKeys() {
             dirty_ = true;
         }
     }
-    if (ImGui::IsKeyPressed(GLFW_KEY_R) && orbit_.any()) {
+    if (ImGui::IsKeyPressed(VIEWER_KEY(R, GLFW_KEY_R)) && orbit_.any()) {
         orbit_ = CameraOrbit();
         requestStudent(0);
     }
-    if (ImGui::IsKeyPressed(GLFW_KEY_LEFT_BRACKET)) split_ = std::max(0.0f, split_ - 0.05f);
-    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT_BRACKET)) split_ = std::min(1.0f, split_ + 0.05f);
-    if (ImGui::IsKeyPressed(GLFW_KEY_F5)) requestStudent(0);
-    if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) {
+    if (ImGui::IsKeyPressed(VIEWER_KEY(LeftBracket, GLFW_KEY_LEFT_BRACKET)))
+        split_ = std::max(0.0f, split_ - 0.05f);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(RightBracket, GLFW_KEY_RIGHT_BRACKET)))
+        split_ = std::min(1.0f, split_ + 0.05f);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(F5, GLFW_KEY_F5))) requestStudent(0);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(S, GLFW_KEY_S), false)) {
         const std::string stem =
             "shaderlab-" + spec_.id + "-" + sceneName() + "-" + std::to_string(++screenshot_count_);
         saveScreenshots(stem + ".png", stem + "-window.png");
     }
-    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE) || ImGui::IsKeyPressed(GLFW_KEY_Q))
+    if (ImGui::IsKeyPressed(VIEWER_KEY(Escape, GLFW_KEY_ESCAPE)) ||
+        ImGui::IsKeyPressed(VIEWER_KEY(Q, GLFW_KEY_Q)))
         glfwSetWindowShouldClose(window_, GLFW_TRUE);
 }
 
