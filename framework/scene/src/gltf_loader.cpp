@@ -132,6 +132,44 @@ bool guardWriteWholeFile(std::string* err, const std::string&, const std::vector
     return false;
 }
 
+// tinygltf 2.8 and later ask for a file's size before reading it: the same approved paths only.
+bool guardFileSize(std::size_t* size, std::string* err, const std::string& path, void* user) {
+    auto* guard = static_cast<FsGuard*>(user);
+    const auto it = guard->approved.find(path);
+    std::error_code ec;
+    const auto bytes = it == guard->approved.end() ? 0 : fs::file_size(it->second, ec);
+    if (it == guard->approved.end() || ec) {
+        if (err) *err = it == guard->approved.end() ? "not a file inside the scene's folder" : ec.message();
+        return false;
+    }
+    *size = static_cast<std::size_t>(bytes);
+    return true;
+}
+
+// The guard's callbacks, whichever FsCallbacks the installed tinygltf has: up to 2.7 four
+// callbacks and user_data; from 2.8 also GetFileSizeInBytes, and SetFsCallbacks then refuses (and
+// keeps tinygltf's own file system, which reads anywhere) unless every one is set.
+template <typename Callbacks>
+auto setFileSizeCallback(Callbacks& callbacks, int)
+    -> decltype(callbacks.GetFileSizeInBytes = &guardFileSize, void()) {
+    callbacks.GetFileSizeInBytes = &guardFileSize;
+}
+template <typename Callbacks>
+void setFileSizeCallback(Callbacks&, long) {}
+
+// Installs the guard; false when tinygltf refused it (it returns whether it did from 2.8 on).
+template <typename Loader>
+auto installGuard(Loader& gltf, const tinygltf::FsCallbacks& callbacks, int)
+    -> decltype(gltf.SetFsCallbacks(callbacks, nullptr), bool()) {
+    std::string err;
+    return gltf.SetFsCallbacks(callbacks, &err);
+}
+template <typename Loader>
+bool installGuard(Loader& gltf, const tinygltf::FsCallbacks& callbacks, long) {
+    gltf.SetFsCallbacks(callbacks);
+    return true;
+}
+
 // tinygltf's image loader: keeps the encoded bytes of an image (ImageBytes, gltf_converter.h).
 bool keepImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
@@ -433,8 +471,16 @@ SceneLoadResult loadGltfSceneFromBytes(const std::string& bytes, const std::stri
         if (guard.prefix.empty() || guard.prefix.back() != '/') guard.prefix += '/';
 
         tinygltf::TinyGLTF gltf;
-        gltf.SetFsCallbacks(tinygltf::FsCallbacks{&guardFileExists, &guardExpandFilePath, &guardReadWholeFile,
-                                                  &guardWriteWholeFile, &guard});
+        tinygltf::FsCallbacks callbacks{};
+        callbacks.FileExists = &guardFileExists;
+        callbacks.ExpandFilePath = &guardExpandFilePath;
+        callbacks.ReadWholeFile = &guardReadWholeFile;
+        callbacks.WriteWholeFile = &guardWriteWholeFile;
+        setFileSizeCallback(callbacks, 0);
+        callbacks.user_data = &guard;
+        // Fail closed: without the guard tinygltf would read whatever a URI names.
+        if (!installGuard(gltf, callbacks, 0))
+            fail("the glTF library refused the loader's file-system guard");
         ImageBytes images;
         gltf.SetImageLoader(&keepImage, &images);
 
