@@ -323,6 +323,130 @@ std::string seconds(double s) {
     return buf;
 }
 
+// The child's progress as the parent reads it: a pipe the child writes one line per event into.
+struct ChildProgress {
+    ChildProgress(int read_fd, const RenderOptions& render_options, IsolatedRender* result,
+                  std::chrono::steady_clock::time_point start)
+        : fd(read_fd), options(render_options), out(*result), t0(start), phase_start(start) {}
+
+    // Reads what the child reported so far: the caller hears every event, and the last one says
+    // where a render that has to be stopped was.
+    void drain() {
+        if (fd < 0) return;
+        char buf[4096];
+        for (;;) {
+            const ssize_t n = read(fd, buf, sizeof buf);
+            if (n <= 0) break;
+            pending.append(buf, static_cast<std::size_t>(n));
+        }
+        for (std::size_t nl = pending.find('\n'); nl != std::string::npos; nl = pending.find('\n')) {
+            const std::string event = grader::printableText(std::string_view(pending).substr(0, nl), 1000);
+            pending.erase(0, nl + 1);
+            if (!drawing && event.rfind("compile ", 0) != 0) {
+                drawing = true;
+                phase_start = std::chrono::steady_clock::now();
+                out.compile_ms = std::chrono::duration<double, std::milli>(phase_start - t0).count();
+            }
+            if (event.rfind("done ", 0) != 0) out.last_event = event;
+            if (options.progress) options.progress(event);
+        }
+        if (pending.size() > 1000000) pending.clear();  // a line without end: not ours
+    }
+
+    const int fd;  // the pipe's read end; -1: none
+    const RenderOptions& options;
+    IsolatedRender& out;
+    const std::chrono::steady_clock::time_point t0;
+    std::string pending;
+    bool drawing = false;  // the child reported its first scene: the draw clock runs
+    std::chrono::steady_clock::time_point phase_start;
+};
+
+// How watching a child ended: `finished` is false when a limit ran out (out.limit names it).
+struct ChildEnd {
+    int wstatus = 0;
+    bool finished = false, lost = false;  // lost: reaped elsewhere
+};
+
+ChildEnd watchChild(pid_t pid, const IsolationLimits& limits, ChildProgress& progress) {
+    IsolatedRender& out = progress.out;
+    ChildEnd end;
+    // Poll rather than block: the parent must be able to give up on a child that never ends or
+    // grows too large.
+    while (true) {
+        const pid_t r = waitpid(pid, &end.wstatus, WNOHANG);
+        if (r == pid) {
+            end.finished = true;
+            break;
+        }
+        if (r < 0 && errno != EINTR) {  // reaped elsewhere: judge by what it left behind
+            end.finished = end.lost = true;
+            break;
+        }
+        progress.drain();
+        const auto now = std::chrono::steady_clock::now();
+        const double in_phase = std::chrono::duration<double>(now - progress.phase_start).count();
+        if (in_phase > (progress.drawing ? limits.timeout_s : limits.compile_timeout_s)) {
+            out.limit = progress.drawing ? "draw_timeout" : "compile_timeout";
+            break;
+        }
+        const std::size_t rss = residentBytes(pid);
+        out.peak_rss_bytes = std::max(out.peak_rss_bytes, rss);
+        if (rss > limits.memory_bytes) {
+            out.limit = "memory";
+            break;
+        }
+        const double elapsed = std::chrono::duration<double>(now - progress.t0).count();
+        std::this_thread::sleep_for(std::chrono::milliseconds(elapsed < 1.0 ? 2 : 10));
+    }
+    return end;
+}
+
+// The status and message of a child that ended or was killed: the limit that ran out, the signal
+// it died of, or else the result it wrote.
+void judgeChild(const IsolationLimits& limits, const ChildEnd& end, int result_fd, IsolatedRender* result) {
+    IsolatedRender& out = *result;
+    const int wstatus = end.wstatus;
+    const bool lost = end.lost;
+    const std::string where = whereItStopped(out.last_event);
+    if (out.limit == "compile_timeout") {
+        out.status = IsolatedStatus::Timeout;
+        out.message = "compile timeout: not ready to draw within " + seconds(limits.compile_timeout_s) +
+                      " s (the compile limit)" + where +
+                      " (a very large or complex shader, e.g. a huge array or a macro that doubles "
+                      "itself?); the process was killed";
+    } else if (out.limit == "draw_timeout") {
+        out.status = IsolatedStatus::Timeout;
+        out.message = "draw timeout: drawing did not finish within " + seconds(limits.timeout_s) +
+                      " s (the draw limit)" + where +
+                      " (an endless or very long loop in a shader?); the process was killed";
+    } else if (out.limit == "memory") {
+        out.status = IsolatedStatus::Crashed;
+        out.message = "memory limit: the render process used more than " +
+                      std::to_string(limits.memory_bytes >> 20) + " MiB" + where +
+                      " (a huge array, or a macro that doubles itself?); the process was killed";
+    } else if (!lost && WIFSIGNALED(wstatus)) {
+        out.status = IsolatedStatus::Crashed;
+        const int sig = WTERMSIG(wstatus);
+        out.message = std::string("the render process died of signal ") + std::to_string(sig) + " (" +
+                      strsignal(sig) + ")" + where;
+        if (sig == SIGKILL || sig == SIGSEGV || sig == SIGABRT)
+            out.message += "; the shader may have crashed the driver or exceeded the memory limit";
+        if (sig == SIGXCPU) out.message += "; it used more processor time than its limits allow";
+    } else if (!readChildResult(result_fd, &out)) {
+        out.status = IsolatedStatus::Crashed;
+        out.message =
+            (lost ? std::string("the render process ended")
+                  : "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) + ")") +
+            " without a readable result" + where + "; out of memory?";
+    }
+    if (out.status == IsolatedStatus::Timeout || out.status == IsolatedStatus::Crashed) {
+        out.render.status = RenderStatus::RenderError;
+        out.render.scenes.clear();  // an interrupted render's images are not graded
+        out.render.message = out.message;
+    }
+}
+
 }  // namespace
 
 const char* isolatedStatusName(IsolatedStatus status) {
@@ -386,112 +510,21 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
     g_render_child = pid;
     if (progress_pipe[1] >= 0) close(progress_pipe[1]);
     if (progress_pipe[0] >= 0) fcntl(progress_pipe[0], F_SETFL, O_NONBLOCK);
-    std::string pending;
-    bool drawing = false;  // the child reported its first scene: the draw clock runs
-    auto phase_start = t0;
-    // Reads what the child reported so far: the caller hears every event, and the last one says
-    // where a render that has to be stopped was.
-    auto drainProgress = [&]() {
-        if (progress_pipe[0] < 0) return;
-        char buf[4096];
-        for (;;) {
-            const ssize_t n = read(progress_pipe[0], buf, sizeof buf);
-            if (n <= 0) break;
-            pending.append(buf, static_cast<std::size_t>(n));
-        }
-        for (std::size_t nl = pending.find('\n'); nl != std::string::npos; nl = pending.find('\n')) {
-            const std::string event = grader::printableText(std::string_view(pending).substr(0, nl), 1000);
-            pending.erase(0, nl + 1);
-            if (!drawing && event.rfind("compile ", 0) != 0) {
-                drawing = true;
-                phase_start = std::chrono::steady_clock::now();
-                out.compile_ms = std::chrono::duration<double, std::milli>(phase_start - t0).count();
-            }
-            if (event.rfind("done ", 0) != 0) out.last_event = event;
-            if (options.progress) options.progress(event);
-        }
-        if (pending.size() > 1000000) pending.clear();  // a line without end: not ours
-    };
-
-    int wstatus = 0;
-    bool finished = false, lost = false;
-    // Poll rather than block: the parent must be able to give up on a child that never ends or
-    // grows too large.
-    while (true) {
-        const pid_t r = waitpid(pid, &wstatus, WNOHANG);
-        if (r == pid) {
-            finished = true;
-            break;
-        }
-        if (r < 0 && errno != EINTR) {  // reaped elsewhere: judge by what it left behind
-            finished = lost = true;
-            break;
-        }
-        drainProgress();
-        const auto now = std::chrono::steady_clock::now();
-        const double in_phase = std::chrono::duration<double>(now - phase_start).count();
-        if (in_phase > (drawing ? limits.timeout_s : limits.compile_timeout_s)) {
-            out.limit = drawing ? "draw_timeout" : "compile_timeout";
-            break;
-        }
-        const std::size_t rss = residentBytes(pid);
-        out.peak_rss_bytes = std::max(out.peak_rss_bytes, rss);
-        if (rss > limits.memory_bytes) {
-            out.limit = "memory";
-            break;
-        }
-        const double elapsed = std::chrono::duration<double>(now - t0).count();
-        std::this_thread::sleep_for(std::chrono::milliseconds(elapsed < 1.0 ? 2 : 10));
-    }
-    drainProgress();
+    ChildProgress progress(progress_pipe[0], options, &out, t0);
+    ChildEnd end = watchChild(pid, limits, progress);
+    progress.drain();
     if (progress_pipe[0] >= 0) close(progress_pipe[0]);
-    if (!finished) {
+    if (!end.finished) {
         kill(-pid, SIGKILL);
         kill(pid, SIGKILL);
         // A child stuck in the kernel (a GPU driver) may take a while to die; it is reaped.
-        waitpid(pid, &wstatus, 0);
+        waitpid(pid, &end.wstatus, 0);
     }
     g_render_child = 0;
     sigaction(SIGCHLD, &old_chld, nullptr);
     out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (!drawing) out.compile_ms = out.wall_ms;
-    const std::string where = whereItStopped(out.last_event);
-    if (out.limit == "compile_timeout") {
-        out.status = IsolatedStatus::Timeout;
-        out.message = "compile timeout: not ready to draw within " + seconds(limits.compile_timeout_s) +
-                      " s (the compile limit)" + where +
-                      " (a very large or complex shader, e.g. a huge array or a macro that doubles "
-                      "itself?); the process was killed";
-    } else if (out.limit == "draw_timeout") {
-        out.status = IsolatedStatus::Timeout;
-        out.message = "draw timeout: drawing did not finish within " + seconds(limits.timeout_s) +
-                      " s (the draw limit)" + where +
-                      " (an endless or very long loop in a shader?); the process was killed";
-    } else if (out.limit == "memory") {
-        out.status = IsolatedStatus::Crashed;
-        out.message = "memory limit: the render process used more than " +
-                      std::to_string(limits.memory_bytes >> 20) + " MiB" + where +
-                      " (a huge array, or a macro that doubles itself?); the process was killed";
-    } else if (!lost && WIFSIGNALED(wstatus)) {
-        out.status = IsolatedStatus::Crashed;
-        const int sig = WTERMSIG(wstatus);
-        out.message = std::string("the render process died of signal ") + std::to_string(sig) + " (" +
-                      strsignal(sig) + ")" + where;
-        if (sig == SIGKILL || sig == SIGSEGV || sig == SIGABRT)
-            out.message += "; the shader may have crashed the driver or exceeded the memory limit";
-        if (sig == SIGXCPU) out.message += "; it used more processor time than its limits allow";
-    } else if (!readChildResult(result_fd, &out)) {
-        out.status = IsolatedStatus::Crashed;
-        out.message =
-            (lost ? std::string("the render process ended")
-                  : "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) + ")") +
-            " without a readable result" + where + "; out of memory?";
-    }
-    if (out.status == IsolatedStatus::Timeout || out.status == IsolatedStatus::Crashed) {
-        out.render.status = RenderStatus::RenderError;
-        out.render.scenes.clear();  // an interrupted render's images are not graded
-        out.render.message = out.message;
-    }
+    if (!progress.drawing) out.compile_ms = out.wall_ms;
+    judgeChild(limits, end, result_fd, &out);
     close(result_fd);
     return out;
 }

@@ -492,6 +492,113 @@ unsigned ShaderProgram::guardedProgram(const StageSource& vertex, const StageSou
     return program;
 }
 
+namespace {
+
+// One stage of ShaderProgram::build(), compiled, with its log parsed; build() explains it.
+struct CompiledStage {
+    GLuint shader = 0;  // 0: it did not compile (and the shader is deleted)
+    StageLog log;
+    std::string prepared;  // the text the driver compiled
+    StageText text;
+    std::vector<Diagnostic> parsed, include_errors;
+    std::size_t dropped = 0;  // messages of `parsed` left out, unexplained
+};
+
+CompiledStage compileStage(GLenum kind, const StageSource& source) {
+    CompiledStage c;
+    StageLog& log = c.log;
+    log.file = source.file;
+    log.stage = kind == GL_VERTEX_SHADER ? "vertex" : "fragment";
+    const PreparedSource src = prepareSource(source.text, defaultPrelude(), source.file, source.includes);
+    c.prepared = src.text;
+    c.text = StageText{log.stage, src.files, src.texts};
+    const auto t0 = std::chrono::steady_clock::now();
+    const GLuint shader = glCreateShader(kind);
+    GLint ok = GL_FALSE;
+    if (!src.rejected) {
+        const char* ptr = src.text.c_str();
+        const GLint length = static_cast<GLint>(src.text.size());
+        glShaderSource(shader, 1, &ptr, &length);
+        glCompileShader(shader);
+        glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    }
+    log.compile_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    GLint len = 0;
+    if (!src.rejected) glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+    if (len > 1) {
+        std::string buf(static_cast<std::size_t>(len), '\0');
+        glGetShaderInfoLog(shader, len, nullptr, buf.data());
+        buf.resize(std::strlen(buf.c_str()));
+        // A student can make the driver write megabytes (thousands of errors): the log is cut.
+        if (buf.size() > kMaxLogBytes) {
+            const std::size_t cut = buf.rfind('\n', kMaxLogBytes);
+            buf.resize(cut == std::string::npos ? kMaxLogBytes : cut + 1);
+        }
+        log.info_log = buf;
+    }
+    c.include_errors = src.errors;
+    log.compiled = ok == GL_TRUE && src.errors.empty();
+    c.parsed = parseInfoLog(log.info_log, src.files);
+    // Explaining costs time per message (a closest-name search over the file): a flood is cut
+    // before, and a note says how much was left out.
+    if (c.parsed.size() > kMaxExplained) {
+        c.dropped = c.parsed.size() - kMaxExplained;
+        c.parsed.resize(kMaxExplained);
+    }
+    if (!log.compiled) {
+        glDeleteShader(shader);
+        return c;
+    }
+    c.shader = shader;
+    return c;
+}
+
+// The program's active uniforms by name; one in a uniform block is left out (not set by name).
+void queryUniforms(GLuint program, std::map<std::string, std::size_t>* index,
+                   std::vector<UniformSlot>* list) {
+    GLint count = 0;
+    glGetProgramiv(program, GL_ACTIVE_UNIFORMS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        char name[256];
+        GLsizei name_len = 0;
+        GLint size = 0;
+        GLenum type = 0;
+        glGetActiveUniform(program, static_cast<GLuint>(i), sizeof name, &name_len, &size, &type, name);
+        std::string n(name, static_cast<std::size_t>(name_len));
+        UniformSlot slot;
+        slot.location = glGetUniformLocation(program, n.c_str());
+        slot.type = type;
+        slot.size = size;
+        if (n.size() > 3 && n.compare(n.size() - 3, 3, "[0]") == 0) n.resize(n.size() - 3);
+        slot.name = n;
+        if (slot.location < 0) continue;  // in a uniform block: not set by name
+        (*index)[n] = list->size();
+        list->push_back(slot);
+    }
+}
+
+// The program's active fragment outputs, gl_* ones left out (needs OpenGL 4.3).
+void queryOutputs(GLuint program, std::vector<FragmentOutput>* out) {
+    GLint outputs = 0;
+    glGetProgramInterfaceiv(program, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &outputs);
+    for (GLint i = 0; i < outputs; ++i) {
+        char name[256];
+        GLsizei name_len = 0;
+        glGetProgramResourceName(program, GL_PROGRAM_OUTPUT, static_cast<GLuint>(i), sizeof name, &name_len,
+                                 name);
+        const GLenum prop = GL_LOCATION;
+        GLint location = -1;
+        glGetProgramResourceiv(program, GL_PROGRAM_OUTPUT, static_cast<GLuint>(i), 1, &prop, 1, nullptr,
+                               &location);
+        std::string n(name, static_cast<std::size_t>(name_len));
+        if (n.rfind("gl_", 0) == 0) continue;
+        if (n.size() > 3 && n.compare(n.size() - 3, 3, "[0]") == 0) n.resize(n.size() - 3);
+        out->push_back({n, location});
+    }
+}
+
+}  // namespace
+
 bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment,
                           const std::vector<std::string>& attachments, bool guard_loops) {
     release();
@@ -506,75 +613,28 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
     compiled_ = linked_ = outputs_known_ = false;
 
     // Each stage's log is explained once both are compiled: a hint may name the other stage.
-    StageText texts[2];
-    std::vector<Diagnostic> parsed[2], include_errors[2];
-    std::size_t dropped[2] = {0, 0};
-    auto compile = [&](GLenum kind, const StageSource& source) -> GLuint {
-        const int k = kind == GL_VERTEX_SHADER ? 0 : 1;
-        StageLog log;
-        log.file = source.file;
-        log.stage = kind == GL_VERTEX_SHADER ? "vertex" : "fragment";
-        const PreparedSource src = prepareSource(source.text, defaultPrelude(), source.file, source.includes);
-        prepared_[k] = src.text;
-        texts[k] = StageText{log.stage, src.files, src.texts};
-        const auto t0 = std::chrono::steady_clock::now();
-        const GLuint shader = glCreateShader(kind);
-        GLint ok = GL_FALSE;
-        if (!src.rejected) {
-            const char* ptr = src.text.c_str();
-            const GLint length = static_cast<GLint>(src.text.size());
-            glShaderSource(shader, 1, &ptr, &length);
-            glCompileShader(shader);
-            glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-        }
-        log.compile_us =
-            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-        GLint len = 0;
-        if (!src.rejected) glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
-        if (len > 1) {
-            std::string buf(static_cast<std::size_t>(len), '\0');
-            glGetShaderInfoLog(shader, len, nullptr, buf.data());
-            buf.resize(std::strlen(buf.c_str()));
-            // A student can make the driver write megabytes (thousands of errors): the log is cut.
-            if (buf.size() > kMaxLogBytes) {
-                const std::size_t cut = buf.rfind('\n', kMaxLogBytes);
-                buf.resize(cut == std::string::npos ? kMaxLogBytes : cut + 1);
-            }
-            log.info_log = buf;
-        }
-        include_errors[k] = src.errors;
-        log.compiled = ok == GL_TRUE && src.errors.empty();
-        parsed[k] = parseInfoLog(log.info_log, src.files);
-        // Explaining costs time per message (a closest-name search over the file): a flood is cut
-        // before, and a note says how much was left out.
-        if (parsed[k].size() > kMaxExplained) {
-            dropped[k] = parsed[k].size() - kMaxExplained;
-            parsed[k].resize(kMaxExplained);
-        }
-        const bool compiled = log.compiled;
-        stages_.push_back(std::move(log));
-        if (!compiled) {
-            glDeleteShader(shader);
-            return 0;
-        }
-        return shader;
-    };
-
-    const GLuint vs = compile(GL_VERTEX_SHADER, vertex);
-    const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment);
+    CompiledStage stage[2];
+    stage[0] = compileStage(GL_VERTEX_SHADER, vertex);
+    stage[1] = compileStage(GL_FRAGMENT_SHADER, fragment);
     for (int k = 0; k < 2; ++k) {
-        for (const Diagnostic& d : include_errors[k]) diagnostics_.push_back(d);
-        for (Diagnostic& d : explainCompileLog(parsed[k], texts[k], &texts[1 - k]))
+        prepared_[k] = stage[k].prepared;
+        stages_.push_back(stage[k].log);
+    }
+    const GLuint vs = stage[0].shader;
+    const GLuint fs = stage[1].shader;
+    for (int k = 0; k < 2; ++k) {
+        for (const Diagnostic& d : stage[k].include_errors) diagnostics_.push_back(d);
+        for (Diagnostic& d : explainCompileLog(stage[k].parsed, stage[k].text, &stage[1 - k].text))
             diagnostics_.push_back(std::move(d));
-        if (dropped[k] > 0)
-            diagnostics_.push_back({texts[k].files.empty() ? std::string() : texts[k].files.front(), 0, 0,
-                                    "note",
-                                    "the compiler reported " + std::to_string(dropped[k]) +
+        if (stage[k].dropped > 0)
+            diagnostics_.push_back({stage[k].text.files.empty() ? std::string() : stage[k].text.files.front(),
+                                    0, 0, "note",
+                                    "the compiler reported " + std::to_string(stage[k].dropped) +
                                         " more messages for this file; they are left out (fix the first "
                                         "ones and compile again)"});
         // Our own warnings only for a stage that compiled: its errors come first.
         if (stages_[static_cast<std::size_t>(k)].compiled)
-            for (Diagnostic& d : scanStage(texts[k])) diagnostics_.push_back(std::move(d));
+            for (Diagnostic& d : scanStage(stage[k].text)) diagnostics_.push_back(std::move(d));
     }
     if (!vs || !fs) {
         if (vs) glDeleteShader(vs);
@@ -608,7 +668,7 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
         buf.resize(std::strlen(buf.c_str()));
         link_log_ = buf;
         // The driver gives no position: each problem is placed at the declaration it is about.
-        for (Diagnostic& d : explainLinkLog(link_log_, texts[0], texts[1]))
+        for (Diagnostic& d : explainLinkLog(link_log_, stage[0].text, stage[1].text))
             diagnostics_.push_back(std::move(d));
     }
     linked_ = ok == GL_TRUE;
@@ -622,43 +682,10 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
         }
     }
 
-    GLint count = 0;
-    glGetProgramiv(program_, GL_ACTIVE_UNIFORMS, &count);
-    for (GLint i = 0; i < count; ++i) {
-        char name[256];
-        GLsizei name_len = 0;
-        GLint size = 0;
-        GLenum type = 0;
-        glGetActiveUniform(program_, static_cast<GLuint>(i), sizeof name, &name_len, &size, &type, name);
-        std::string n(name, static_cast<std::size_t>(name_len));
-        UniformSlot slot;
-        slot.location = glGetUniformLocation(program_, n.c_str());
-        slot.type = type;
-        slot.size = size;
-        if (n.size() > 3 && n.compare(n.size() - 3, 3, "[0]") == 0) n.resize(n.size() - 3);
-        slot.name = n;
-        if (slot.location < 0) continue;  // in a uniform block: not set by name
-        uniform_index_[n] = uniform_list_.size();
-        uniform_list_.push_back(slot);
-    }
+    queryUniforms(program_, &uniform_index_, &uniform_list_);
     if (GLAD_GL_VERSION_4_3) {
         outputs_known_ = true;
-        GLint outputs = 0;
-        glGetProgramInterfaceiv(program_, GL_PROGRAM_OUTPUT, GL_ACTIVE_RESOURCES, &outputs);
-        for (GLint i = 0; i < outputs; ++i) {
-            char name[256];
-            GLsizei name_len = 0;
-            glGetProgramResourceName(program_, GL_PROGRAM_OUTPUT, static_cast<GLuint>(i), sizeof name,
-                                     &name_len, name);
-            const GLenum prop = GL_LOCATION;
-            GLint location = -1;
-            glGetProgramResourceiv(program_, GL_PROGRAM_OUTPUT, static_cast<GLuint>(i), 1, &prop, 1, nullptr,
-                                   &location);
-            std::string n(name, static_cast<std::size_t>(name_len));
-            if (n.rfind("gl_", 0) == 0) continue;
-            if (n.size() > 3 && n.compare(n.size() - 3, 3, "[0]") == 0) n.resize(n.size() - 3);
-            outputs_.push_back({n, location});
-        }
+        queryOutputs(program_, &outputs_);
     }
     snapshotDefaults();
     return true;

@@ -1,0 +1,207 @@
+// One run of a pass (lab_runner.h): the ping-pong copy, the program with its inputs and
+// uniforms, a draw per cube face (the full-screen triangle, a mesh-less procedural draw, or the
+// scene's meshes with their materials), then the GL error check, mipmaps and read-back; and the
+// loop guard, read after each run. The state a pass draws with is pass_state.cpp's, its textures
+// pass_inputs.cpp's, its uniforms pass_uniforms.cpp's.
+#include <algorithm>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "lab_runner.h"
+
+namespace shaderlab::render_detail {
+
+namespace {
+
+GLenum glPrimitive(Primitive p) {
+    switch (p) {
+        case Primitive::Points:
+            return GL_POINTS;
+        case Primitive::Lines:
+            return GL_LINES;
+        case Primitive::LineStrip:
+            return GL_LINE_STRIP;
+        case Primitive::TriangleStrip:
+            return GL_TRIANGLE_STRIP;
+        default:
+            return GL_TRIANGLES;
+    }
+}
+
+std::string glErrorName(GLenum e) {
+    switch (e) {
+        case GL_INVALID_ENUM:
+            return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE:
+            return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION:
+            return "GL_INVALID_OPERATION";
+        case GL_OUT_OF_MEMORY:
+            return "GL_OUT_OF_MEMORY";
+        case GL_INVALID_FRAMEBUFFER_OPERATION:
+            return "GL_INVALID_FRAMEBUFFER_OPERATION";
+        default:
+            return "GL error " + std::to_string(e);
+    }
+}
+
+}  // namespace
+
+// The counters guarded programs write when a loop runs past kLoopGuardLimit (shader_program.h).
+void LabRunner::createLoopGuard() {
+    if (!GLAD_GL_VERSION_4_3) return;
+    const GLuint zero[2] = {0, 0};
+    glGenBuffers(1, &loop_guard_);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, zero, GL_DYNAMIC_READ);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLoopGuardBinding, loop_guard_);
+}
+
+// After a pass: did a loop of its program run past the guard? Then the render stops here.
+bool LabRunner::checkLoopGuard(const PassSpec& pass, const std::string& scene) {
+    if (!loop_guard_) return true;
+    GLuint counts[2] = {0, 0};
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard_);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counts, counts);
+    if (counts[0] == 0 && counts[1] == 0) return true;
+    const bool vertex = counts[0] > 0;
+    const std::string& file = vertex ? pass.program.vertex : pass.program.fragment;
+    const std::string message =
+        "endless loop: in pass '" + pass.name + "' of scene '" + scene + "', a loop ran more than " +
+        std::to_string(kLoopGuardLimit) + " times for one " + (vertex ? "vertex" : "pixel") + " (" +
+        std::to_string(vertex ? counts[0] : counts[1]) + (vertex ? " vertices" : " pixels") +
+        "); the grader stops it there, as a GPU would hang on it. Check that every loop's condition "
+        "becomes false: its counter must change, and towards the end";
+    out_.endless_loop = true;
+    out_.diagnostics.push_back({file, 0, 0, "error", message});
+    return fail(RenderStatus::RenderError, file + ": " + message);
+}
+
+bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, SceneContext& ctx) {
+    const PassSpec& pass = spec_.passes[index];
+    const ShaderProgram& prog = programOf(pass);
+    const std::string& file = pass.program.fragment;
+    TargetGl& target = *targets_.at(pass.target);
+    const PassCamera& pc = ctx.cameras[index];
+    if (iteration == 0) report("pass " + ctx.spec->name + " " + pass.name);
+    const int write = target.buffers == 2 ? 1 - target.front : 0;
+    const bool clears_all = std::all_of(pass.state.clear_colors.begin(), pass.state.clear_colors.end(),
+                                        [](const auto& c) { return c.has_value(); });
+    if (target.buffers == 2 && !clears_all) copyFrontToBack(target);
+
+    glUseProgram(prog.id());
+    prog.restoreDefaults();
+    if (!bindInputs(pass, prog)) return false;
+    if (!setLabUniforms(pass, prog, ctx)) return false;
+    glUseProgram(prog.id());
+
+    const PassRun run{pass, prog, file, target, pc, ctx};
+    setFrameUniforms(run, iteration);
+    setLightUniforms(run);
+    drawFaces(run, write);
+    glBindVertexArray(0);
+    const GLenum err = glGetError();
+    if (err != GL_NO_ERROR)
+        return fail(RenderStatus::RenderError,
+                    "pass '" + pass.name + "', scene '" + ctx.spec->name + "': " + glErrorName(err));
+    target.front = write;
+    if (pass.draw == DrawKind::Fullscreen) target.fullscreen_drawn = true;
+    if (target.mipmapped) {
+        glActiveTexture(GL_TEXTURE0 + kScratchTextureUnit);
+        for (GLuint tex : target.color[target.front]) {
+            glBindTexture(target.textureTarget(), tex);
+            glGenerateMipmap(target.textureTarget());
+        }
+        glBindTexture(target.textureTarget(), 0);
+        glActiveTexture(GL_TEXTURE0);
+    }
+    if (!last_iteration) return true;
+    readBack(run);
+    return true;
+}
+
+// The pass's draws into each face of its target (one for a 2D target), with the pass's state.
+void LabRunner::drawFaces(const PassRun& run, int write) {
+    const PassSpec& pass = run.pass;
+    const ShaderProgram& prog = run.prog;
+    const std::string& file = run.file;
+    const TargetGl& target = run.target;
+    const TargetSpec& tspec = *target.spec;
+    const SceneContext& ctx = run.ctx;
+    const bool program_point_size =
+        pass.draw == DrawKind::Procedural && mentionsIdentifier(prog.preparedText(0), "gl_PointSize");
+    static const Material kDefaultMaterial;
+    const MaterialWarning scene_warning = [&](const std::string& message) {
+        warnOnce("../" + ctx.spec->file, message);
+    };
+    for (int face = 0; face < target.faces(); ++face) {
+        glBindFramebuffer(GL_FRAMEBUFFER, target.fbos.at({write, face}));
+        glViewport(0, 0, tspec.width, tspec.height);
+        applyState(pass.state, tspec.format == TargetFormat::SRGB8, program_point_size);
+        clearTarget(pass.state, target.depth != DepthMode::None);
+        setFramework(prog, file, "u_cube_face", GL_INT, [&](GLint l) { glUniform1i(l, face); });
+        if (pass.draw == DrawKind::Fullscreen) {
+            drawMesh(run, scene_warning, fullscreen_.get(), glm::mat4(1.0f), kDefaultMaterial);
+        } else if (pass.draw == DrawKind::Procedural) {
+            drawMesh(run, scene_warning, nullptr, glm::mat4(1.0f), kDefaultMaterial);
+        } else {
+            for (const DrawItem& item : ctx.scene->scene.draw_items) {
+                const Material& material =
+                    item.material >= 0 ? ctx.scene->scene.materials[static_cast<std::size_t>(item.material)]
+                                       : kDefaultMaterial;
+                // A mirroring transform turns the winding over; a double-sided material is not
+                // back-face culled (glTF 2.0, 3.9.6). Front-face culling, a lab's own technique
+                // (inverted-hull outlines), stays.
+                const bool unculled = material.double_sided && pass.state.cull == CullMode::Back;
+                if (item.mirrored) glFrontFace(GL_CW);
+                if (unculled) glDisable(GL_CULL_FACE);
+                drawMesh(run, scene_warning, ctx.scene->meshes[static_cast<std::size_t>(item.mesh)].get(),
+                         item.world, material);
+                if (item.mirrored) glFrontFace(GL_CCW);
+                if (unculled) glEnable(GL_CULL_FACE);
+            }
+        }
+    }
+}
+
+// One draw: the model and material uniforms, the material's textures, then the mesh (none: a
+// procedural draw of the pass's vertex count).
+void LabRunner::drawMesh(const PassRun& run, const MaterialWarning& scene_warning, GpuMesh* mesh,
+                         const glm::mat4& model, const Material& material) {
+    const PassSpec& pass = run.pass;
+    const ShaderProgram& prog = run.prog;
+    const std::string& file = run.file;
+    const glm::mat4& view = run.pc.values.view;
+    const glm::mat4& projection = run.pc.values.projection;
+    const SceneContext& ctx = run.ctx;
+    const glm::vec4& base_color = material.base_color;
+    const glm::mat4 model_view = view * model;
+    const glm::mat4 mvp = projection * model_view;
+    const glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(model));
+    setFramework(prog, file, "u_model", GL_FLOAT_MAT4,
+                 [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(model)); });
+    setFramework(prog, file, "u_model_view", GL_FLOAT_MAT4,
+                 [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(model_view)); });
+    setFramework(prog, file, "u_model_view_projection", GL_FLOAT_MAT4,
+                 [&](GLint l) { glUniformMatrix4fv(l, 1, GL_FALSE, glm::value_ptr(mvp)); });
+    setFramework(prog, file, "u_normal_matrix", GL_FLOAT_MAT3,
+                 [&](GLint l) { glUniformMatrix3fv(l, 1, GL_FALSE, glm::value_ptr(normal_matrix)); });
+    setFramework(prog, file, "u_base_color", GL_FLOAT_VEC4,
+                 [&](GLint l) { glUniform4fv(l, 1, glm::value_ptr(base_color)); });
+    setFramework(prog, file, "u_metallic", GL_FLOAT, [&](GLint l) { glUniform1f(l, material.metallic); });
+    setFramework(prog, file, "u_roughness", GL_FLOAT, [&](GLint l) { glUniform1f(l, material.roughness); });
+    setFramework(prog, file, "u_emissive", GL_FLOAT_VEC3,
+                 [&](GLint l) { glUniform3fv(l, 1, glm::value_ptr(material.emissive)); });
+    material_textures_.bindMaterial(ctx.scene->scene, material, scene_warning);
+    if (!mesh) {
+        glBindVertexArray(empty_vao_);
+        glDrawArrays(glPrimitive(pass.primitive), 0, pass.vertex_count);
+    } else {
+        glBindVertexArray(mesh->vao);
+        const std::vector<GLuint> enabled = bindOptionalAttributes(*mesh, prog.id());
+        glDrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, nullptr);
+        for (GLuint loc : enabled) glDisableVertexAttribArray(loc);
+    }
+}
+
+}  // namespace shaderlab::render_detail
