@@ -7,12 +7,11 @@
 // 20 ms to start. A missing library is an ordinary context error naming it.
 #include "shaderlab/gl/gl_context.h"
 
-// glad's header must come before any other GL header (osmesa.h pulls in GL/gl.h).
+// glad's header must come before any other GL header.
 // clang-format off
 #include "shaderlab/gl/gl.h"
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#include <GL/osmesa.h>
 // clang-format on
 
 #include <dlfcn.h>
@@ -23,6 +22,7 @@
 #include <cstring>
 #include <vector>
 
+#include "osmesa_api.h"
 #include "shaderlab/base/sanitizer.h"
 #include "shaderlab/base/timings.h"
 
@@ -40,11 +40,11 @@ bool resolve(void* lib, const char* name, Fn* fn, std::string* missing) {
 
 // The OSMesa entry points this file uses, from libOSMesa opened on first use.
 struct OSMesaApi {
-    decltype(&::OSMesaCreateContextAttribs) CreateContextAttribs = nullptr;
-    decltype(&::OSMesaCreateContextExt) CreateContextExt = nullptr;
-    decltype(&::OSMesaMakeCurrent) MakeCurrent = nullptr;
-    decltype(&::OSMesaDestroyContext) DestroyContext = nullptr;
-    decltype(&::OSMesaGetProcAddress) GetProcAddress = nullptr;
+    osmesa::CreateContextAttribsFn CreateContextAttribs = nullptr;
+    osmesa::CreateContextExtFn CreateContextExt = nullptr;
+    osmesa::MakeCurrentFn MakeCurrent = nullptr;
+    osmesa::DestroyContextFn DestroyContext = nullptr;
+    osmesa::GetProcAddressFn GetProcAddress = nullptr;
     std::string error;  // why the library is unusable; empty when it loaded
 
     static const OSMesaApi& get() {
@@ -55,12 +55,15 @@ struct OSMesaApi {
   private:
     static OSMesaApi load() {
         OSMesaApi a;
-        void* lib = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
-        if (!lib) lib = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
+        // SHADERLAB_OSMESA_LIBRARY names another library file (a Mesa built with OSMesa elsewhere).
+        const char* chosen = std::getenv("SHADERLAB_OSMESA_LIBRARY");
+        const std::string name = chosen && *chosen ? chosen : "libOSMesa.so.8";
+        void* lib = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!lib && !(chosen && *chosen)) lib = dlopen("libOSMesa.so", RTLD_NOW | RTLD_LOCAL);
         if (!lib) {
             const char* why = dlerror();
             a.error =
-                std::string("osmesa: cannot open libOSMesa.so.8 (") + (why ? why : "not found") +
+                "osmesa: cannot open " + name + " (" + (why ? why : "not found") +
                 "); is libosmesa6 installed? (an address-space limit too small to map it also stops it)";
             return a;
         }
@@ -70,7 +73,7 @@ struct OSMesaApi {
         resolve(lib, "OSMesaMakeCurrent", &a.MakeCurrent, &missing);
         resolve(lib, "OSMesaDestroyContext", &a.DestroyContext, &missing);
         resolve(lib, "OSMesaGetProcAddress", &a.GetProcAddress, &missing);
-        if (!missing.empty()) a.error = "osmesa: libOSMesa.so.8 lacks " + missing;
+        if (!missing.empty()) a.error = "osmesa: " + name + " lacks " + missing;
         return a;
     }
 };
@@ -170,17 +173,17 @@ class OSMesaContextImpl final : public GlContext {
         // requested version, and fails when it cannot.
         const int wanted[][2] = {{4, 5}, {4, 3}, {4, 1}, {3, 3}};
         for (const auto& v : wanted) {
-            const int attribs[] = {OSMESA_FORMAT,
-                                   OSMESA_RGBA,
-                                   OSMESA_DEPTH_BITS,
+            const int attribs[] = {osmesa::kFormat,
+                                   osmesa::kRgba,
+                                   osmesa::kDepthBits,
                                    24,
-                                   OSMESA_STENCIL_BITS,
+                                   osmesa::kStencilBits,
                                    8,
-                                   OSMESA_PROFILE,
-                                   OSMESA_CORE_PROFILE,
-                                   OSMESA_CONTEXT_MAJOR_VERSION,
+                                   osmesa::kProfile,
+                                   osmesa::kCoreProfile,
+                                   osmesa::kContextMajorVersion,
                                    v[0],
-                                   OSMESA_CONTEXT_MINOR_VERSION,
+                                   osmesa::kContextMinorVersion,
                                    v[1],
                                    0};
             ctx_ = osmesa.CreateContextAttribs(attribs, nullptr);
@@ -188,7 +191,7 @@ class OSMesaContextImpl final : public GlContext {
         }
         if (!ctx_) {
             // Learn which version the library can give, to say so.
-            OSMesaContext legacy = osmesa.CreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+            osmesa::Context legacy = osmesa.CreateContextExt(osmesa::kRgba, 24, 8, 0, nullptr);
             std::string found = "none";
             if (legacy && osmesa.MakeCurrent(legacy, pixel_, GL_UNSIGNED_BYTE, 1, 1)) {
                 auto get_string =
@@ -211,7 +214,7 @@ class OSMesaContextImpl final : public GlContext {
 
   private:
     const OSMesaApi& osmesa = OSMesaApi::get();
-    OSMesaContext ctx_ = nullptr;
+    osmesa::Context ctx_ = nullptr;
     unsigned char pixel_[4] = {};
 };
 
@@ -303,7 +306,16 @@ class EglContextImpl final : public GlContext {
 
 }  // namespace
 
-bool parseBackend(const std::string& name, Backend* out) {
+bool parseBackend(const std::string& name, Backend* out, std::string* note) {
+    if (name == "auto") {
+        // Opening libOSMesa here, in the process that forks the render children, costs them
+        // nothing: they inherit it mapped instead of opening it themselves.
+        const std::string& why = OSMesaApi::get().error;
+        *out = why.empty() ? Backend::OSMesa : Backend::Egl;
+        if (note) *note = why.empty() ? "" : why + "; rendering with EGL (surfaceless) instead";
+        return true;
+    }
+    if (note) note->clear();
     if (name == "osmesa") {
         *out = Backend::OSMesa;
         return true;

@@ -11,8 +11,10 @@ namespace shaderlab {
 
 enum class Backend { OSMesa, Egl };
 
-// "osmesa" / "egl" (what --backend takes).
-bool parseBackend(const std::string& name, Backend* out);
+// "osmesa", "egl" or "auto" (what --backend takes). "auto" is OSMesa where libOSMesa can be opened
+// and EGL (surfaceless) where it cannot (Mesa 25.1 and later ship no OSMesa); then `note`, when
+// given, says why in one line for the user, and is empty otherwise.
+bool parseBackend(const std::string& name, Backend* out, std::string* note = nullptr);
 const char* backendName(Backend backend);
 
 struct GlInfo {
