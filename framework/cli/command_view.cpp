@@ -1,4 +1,5 @@
-// `shaderlab view` (the window, framework/viewer/) and `shaderlab watch` (check on every save).
+// `shaderlab view` (the window, framework/viewer/) and `shaderlab watch` (check on every save). A
+// grader-only build (SHADERLAB_GRADER_ONLY) has no window: `view` then says so and what to use.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -8,7 +9,9 @@
 #include "commands.h"
 #include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/live/file_watch.h"
+#if SHADERLAB_HAVE_VIEWER
 #include "shaderlab/viewer/viewer.h"
+#endif
 
 namespace fs = std::filesystem;
 
@@ -34,6 +37,12 @@ bool studentLabFolder(const std::string& submission_arg, const std::string& labs
 }  // namespace
 
 int runView(const ViewArgs& args) {
+#if !SHADERLAB_HAVE_VIEWER
+    std::cerr << "shaderlab: this shaderlab is a grader-only build, without the window (GLFW and Dear ImGui "
+                 "were not found when it was built); `shaderlab watch "
+              << args.lab << "` checks your work on every save in the terminal\n";
+    return 2;
+#else
     std::string labs_root;
     if (!resolveLabsRoot(args.common, &labs_root)) return 2;
     const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / args.lab).string());
@@ -76,6 +85,7 @@ int runView(const ViewArgs& args) {
     options.screenshot = args.screenshot;
     options.screenshot_window = args.screenshot_window;
     return viewer::runViewer(options);
+#endif
 }
 
 int runWatch(const WatchArgs& args) {
