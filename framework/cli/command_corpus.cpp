@@ -19,12 +19,12 @@
 
 #include "commands.h"
 #include "grader/reports/report.h"
+#include "shaderlab/base/paths.h"
 #include "shaderlab/grading/grading.h"
+#include "shaderlab/grading/mistake_hints.h"
 #include "shaderlab/lab/json_schema_check.h"
 #include "shaderlab/lab/lab_catalog.h"
 #include "shaderlab/lab/lab_spec.h"
-#include "shaderlab/grading/mistake_hints.h"
-#include "shaderlab/base/paths.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -278,148 +278,159 @@ Outcome judge(const std::string& lab, const Case& c, const grader::Report& repor
     return o;
 }
 
-}  // namespace
-
-int runCorpus(const CorpusArgs& args) {
+// What every lab of a `corpus` run shares.
+struct CorpusSetup {
     std::string labs_root;
-    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
-    const fs::path corpus = args.corpus_root.empty() ? fs::path(labs_root).parent_path() / "tests" / "corpus"
-                                                     : fs::path(args.corpus_root);
-    const fs::path reference_root = args.reference_root.empty()
-                                        ? fs::path(labs_root).parent_path() / "reference_solutions"
-                                        : fs::path(args.reference_root);
-    std::vector<std::string> ids = args.common.labs;
-    if (ids.empty())
-        for (const std::string& id : listLabIds(labs_root))
-            if (fs::exists(corpus / id / "cases.json")) ids.push_back(id);
-    if (ids.empty()) {
-        std::cerr << "shaderlab: no lab has a corpus under " << corpus.string() << "\n";
-        return 2;
-    }
-    const fs::path out = args.out_dir;
-    std::error_code ec;
-    fs::create_directories(out, ec);
-    if (ec) {
-        std::cerr << "shaderlab: " << out.string() << ": cannot create the output folder\n";
-        return 2;
-    }
+    fs::path corpus, reference_root, out;
     GradeOptions base;
-    parseBackend(args.common.backend, &base.backend);
-    base.labs_root = labs_root;
-    base.limits.timeout_s = args.timeout_s;
-    if (args.use_reference) base.reference_root = reference_root.string();
+};
 
-    std::vector<Outcome> outcomes;
-    bool readable = true;
-    for (const std::string& id : ids) {
-        const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / id).string());
-        if (!parsed.ok) {
-            for (const std::string& e : parsed.errors) std::cerr << e << "\n";
-            readable = false;
+// How the lab's known-mistake hints did on its mistakes, as they are graded.
+struct HintTally {
+    std::vector<MistakeRun> mistakes;
+    int recognised = 0, taken_for_another = 0;
+};
+
+// The submissions a lab's corpus grades: the reference solution, the starter code, then every
+// case as a folder of its own. A case that cannot be made is left out, `readable` false.
+std::vector<std::pair<Case, fs::path>> labSubmissions(const CorpusSetup& setup, const std::string& id,
+                                                      const LabSpec& spec, const std::vector<Case>& cases,
+                                                      bool* readable) {
+    std::vector<std::pair<Case, fs::path>> runs;
+    Case reference;
+    reference.name = "reference";
+    reference.kind = "reference";
+    reference.about = "the reference solution";
+    runs.emplace_back(reference, setup.reference_root);
+    Case starter;
+    starter.name = "starter";
+    starter.kind = "starter";
+    starter.about = "the starter code in labs/";
+    runs.emplace_back(starter, setup.labs_root);
+    for (const Case& c : cases) {
+        const fs::path submission = setup.out / id / "submissions" / c.name;
+        std::string error;
+        if (!materialise(spec, setup.reference_root / id, setup.corpus / id / c.name, c, submission,
+                         &error)) {
+            std::cerr << "shaderlab: " << error << "\n";
+            *readable = false;
             continue;
         }
-        std::vector<Case> cases;
-        std::vector<std::string> errors;
-        if (!loadCases(corpus / id / "cases.json", parsed.spec, &cases, &errors)) {
-            for (const std::string& e : errors) std::cerr << e << "\n";
-            readable = false;
-            continue;
-        }
-        std::printf("%s: %s\n", id.c_str(), parsed.spec.title.c_str());
-        std::vector<std::pair<Case, fs::path>> runs;
-        Case reference;
-        reference.name = "reference";
-        reference.kind = "reference";
-        reference.about = "the reference solution";
-        runs.emplace_back(reference, reference_root);
-        Case starter;
-        starter.name = "starter";
-        starter.kind = "starter";
-        starter.about = "the starter code in labs/";
-        runs.emplace_back(starter, labs_root);
-        for (const Case& c : cases) {
-            const fs::path submission = out / id / "submissions" / c.name;
-            std::string error;
-            if (!materialise(parsed.spec, reference_root / id, corpus / id / c.name, c, submission, &error)) {
-                std::cerr << "shaderlab: " << error << "\n";
-                readable = false;
-                continue;
-            }
-            runs.emplace_back(c, submission);
-        }
-        std::vector<MistakeRun> mistakes;
-        int recognised = 0, taken_for_another = 0;
-        for (const auto& [c, submission] : runs) {
-            GradeOptions options = base;
-            options.labs = {id};
-            options.out_dir = (out / id / "reports" / c.name).string();
-            if (c.timeout_s > 0) options.limits.timeout_s = c.timeout_s;
-            fs::create_directories(options.out_dir, ec);
-            grader::Report report = gradeSubmission(submission.string(), options);
-            report.tool_version = SHADERLAB_VERSION;
-            const fs::path report_file = fs::path(options.out_dir) / "report.json";
-            std::ofstream(report_file) << grader::reportToJson(report);
-            std::ofstream(fs::path(options.out_dir) / "report.html")
-                << grader::reportToHtml(report, {options.out_dir, 20u << 20});
-            Outcome o = judge(id, c, report, report_file.string());
-            if (c.kind == "mistake" && !report.labs.empty()) {
-                bool own = false, other = false;
-                for (const grader::ReportScene& s : report.labs.front().scenes) {
-                    own = own || s.hint.mistake == c.name;
-                    other = other || (!s.hint.mistake.empty() && s.hint.mistake != c.name);
-                }
-                recognised += own;
-                taken_for_another += other;
-                mistakes.push_back({&c, report, options.out_dir});
-            }
-            std::string failed;
-            for (const std::string& g : o.goals_failed) failed += (failed.empty() ? "" : ",") + g;
-            std::printf("  %-4s %-30s %-11s %-13s %6.2f / %-6.2f %s\n", o.ok ? "ok" : "FAIL", c.name.c_str(),
-                        c.kind.c_str(), o.status.c_str(), o.score, o.max_score,
-                        failed.empty() ? "" : ("goals not met: " + failed).c_str());
-            if (!o.ok) std::printf("       expected: %s (%s)\n", o.why.c_str(), c.about.c_str());
-            outcomes.push_back(std::move(o));
-        }
-        // The stored hints must be what the mistakes draw now (`shaderlab goldens` writes them).
-        std::vector<std::string> hint_errors;
-        LabHints stored;
-        std::string stored_error;
-        const fs::path hints_dir = fs::path(parsed.spec.lab_dir) / "hints";
-        const bool readable_hints = loadLabHints(hints_dir.string(), &stored, &stored_error);
-        const LabHints fresh = collectHints(mistakes, stored.unstable, &hint_errors);
-        std::string stale = readable_hints ? compareHints(stored, fresh) : stored_error;
-        if (!hint_errors.empty()) stale = hint_errors.front();
-        std::printf(
-            "  %-4s known-mistake hints: %zu pictures; %d of %zu mistakes recognised by them, %d also taken "
-            "for another in some scene\n",
-            stale.empty() ? "ok" : "FAIL", fresh.hints.size(), recognised, mistakes.size(),
-            taken_for_another);
-        if (!stale.empty()) {
-            std::printf("       %s: %s (run `shaderlab goldens` and commit)\n", hints_dir.string().c_str(),
-                        stale.c_str());
-            Outcome o;
-            o.lab = id;
-            o.name = "hints";
-            o.kind = "hints";
-            o.why = "labs/" + id + "/hints is stale: " + stale;
-            outcomes.push_back(std::move(o));
-        }
-        // The two figures that show the grade separates the two groups.
-        double worst_alternative = -1.0, best_mistake = -1.0, max_score = 0.0;
-        for (const Outcome& o : outcomes) {
-            if (o.lab != id) continue;
-            max_score = o.max_score;
-            if (o.kind == "alternative" || o.kind == "reference")
-                worst_alternative = worst_alternative < 0 ? o.score : std::min(worst_alternative, o.score);
-            if (o.kind == "mistake") best_mistake = std::max(best_mistake, o.score);
-        }
-        std::printf(
-            "  worst correct solution %.2f / %.2f, best mistake %.2f / %.2f (passing needs every goal)\n\n",
-            worst_alternative, max_score, std::max(best_mistake, 0.0), max_score);
+        runs.emplace_back(c, submission);
     }
+    return runs;
+}
 
+// Grades one submission of the lab into <out>/<lab>/reports/<case>/, judges it and prints its
+// line. A mistake's report goes to `tally` (which keeps a pointer to `c`).
+Outcome gradeCase(const CorpusSetup& setup, const std::string& id, const Case& c, const fs::path& submission,
+                  HintTally* tally) {
+    std::error_code ec;
+    GradeOptions options = setup.base;
+    options.labs = {id};
+    options.out_dir = (setup.out / id / "reports" / c.name).string();
+    if (c.timeout_s > 0) options.limits.timeout_s = c.timeout_s;
+    fs::create_directories(options.out_dir, ec);
+    grader::Report report = gradeSubmission(submission.string(), options);
+    report.tool_version = SHADERLAB_VERSION;
+    const fs::path report_file = fs::path(options.out_dir) / "report.json";
+    std::ofstream(report_file) << grader::reportToJson(report);
+    std::ofstream(fs::path(options.out_dir) / "report.html")
+        << grader::reportToHtml(report, {options.out_dir, 20u << 20});
+    Outcome o = judge(id, c, report, report_file.string());
+    if (c.kind == "mistake" && !report.labs.empty()) {
+        bool own = false, other = false;
+        for (const grader::ReportScene& s : report.labs.front().scenes) {
+            own = own || s.hint.mistake == c.name;
+            other = other || (!s.hint.mistake.empty() && s.hint.mistake != c.name);
+        }
+        tally->recognised += own;
+        tally->taken_for_another += other;
+        tally->mistakes.push_back({&c, report, options.out_dir});
+    }
+    std::string failed;
+    for (const std::string& g : o.goals_failed) failed += (failed.empty() ? "" : ",") + g;
+    std::printf("  %-4s %-30s %-11s %-13s %6.2f / %-6.2f %s\n", o.ok ? "ok" : "FAIL", c.name.c_str(),
+                c.kind.c_str(), o.status.c_str(), o.score, o.max_score,
+                failed.empty() ? "" : ("goals not met: " + failed).c_str());
+    if (!o.ok) std::printf("       expected: %s (%s)\n", o.why.c_str(), c.about.c_str());
+    return o;
+}
+
+// The stored hints must be what the mistakes draw now (`shaderlab goldens` writes them): prints
+// the verdict, and adds a failed outcome when they are stale.
+void checkHints(const std::string& id, const LabSpec& spec, const HintTally& tally,
+                std::vector<Outcome>* outcomes) {
+    std::vector<std::string> hint_errors;
+    LabHints stored;
+    std::string stored_error;
+    const fs::path hints_dir = fs::path(spec.lab_dir) / "hints";
+    const bool readable_hints = loadLabHints(hints_dir.string(), &stored, &stored_error);
+    const LabHints fresh = collectHints(tally.mistakes, stored.unstable, &hint_errors);
+    std::string stale = readable_hints ? compareHints(stored, fresh) : stored_error;
+    if (!hint_errors.empty()) stale = hint_errors.front();
+    std::printf(
+        "  %-4s known-mistake hints: %zu pictures; %d of %zu mistakes recognised by them, %d also taken "
+        "for another in some scene\n",
+        stale.empty() ? "ok" : "FAIL", fresh.hints.size(), tally.recognised, tally.mistakes.size(),
+        tally.taken_for_another);
+    if (!stale.empty()) {
+        std::printf("       %s: %s (run `shaderlab goldens` and commit)\n", hints_dir.string().c_str(),
+                    stale.c_str());
+        Outcome o;
+        o.lab = id;
+        o.name = "hints";
+        o.kind = "hints";
+        o.why = "labs/" + id + "/hints is stale: " + stale;
+        outcomes->push_back(std::move(o));
+    }
+}
+
+// The two figures that show the grade separates the two groups.
+void printSeparation(const std::string& id, const std::vector<Outcome>& outcomes) {
+    double worst_alternative = -1.0, best_mistake = -1.0, max_score = 0.0;
+    for (const Outcome& o : outcomes) {
+        if (o.lab != id) continue;
+        max_score = o.max_score;
+        if (o.kind == "alternative" || o.kind == "reference")
+            worst_alternative = worst_alternative < 0 ? o.score : std::min(worst_alternative, o.score);
+        if (o.kind == "mistake") best_mistake = std::max(best_mistake, o.score);
+    }
+    std::printf(
+        "  worst correct solution %.2f / %.2f, best mistake %.2f / %.2f (passing needs every goal)\n\n",
+        worst_alternative, max_score, std::max(best_mistake, 0.0), max_score);
+}
+
+// One lab's corpus: its reference, starter and cases graded and judged, its hints checked.
+// `readable` turns false when the lab or its cases cannot be read.
+void runLabCorpus(const CorpusSetup& setup, const std::string& id, std::vector<Outcome>* outcomes,
+                  bool* readable) {
+    const LabSpecResult parsed = parseLabSpec((fs::path(setup.labs_root) / id).string());
+    if (!parsed.ok) {
+        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
+        *readable = false;
+        return;
+    }
+    std::vector<Case> cases;
+    std::vector<std::string> errors;
+    if (!loadCases(setup.corpus / id / "cases.json", parsed.spec, &cases, &errors)) {
+        for (const std::string& e : errors) std::cerr << e << "\n";
+        *readable = false;
+        return;
+    }
+    std::printf("%s: %s\n", id.c_str(), parsed.spec.title.c_str());
+    const std::vector<std::pair<Case, fs::path>> runs =
+        labSubmissions(setup, id, parsed.spec, cases, readable);
+    HintTally tally;
+    for (const auto& [c, submission] : runs) outcomes->push_back(gradeCase(setup, id, c, submission, &tally));
+    checkHints(id, parsed.spec, tally, outcomes);
+    printSeparation(id, *outcomes);
+}
+
+// corpus.json, one entry per outcome. Whether every outcome is as expected.
+bool writeCorpusSummary(const fs::path& out, const std::vector<Outcome>& outcomes) {
     json summary = json::array();
-    bool all_ok = readable;
+    bool all_ok = true;
     for (const Outcome& o : outcomes) {
         all_ok = all_ok && o.ok;
         summary.push_back({{"lab", o.lab},
@@ -436,6 +447,44 @@ int runCorpus(const CorpusArgs& args) {
     }
     std::ofstream(out / "corpus.json") << summary.dump(2) << "\n";
     std::printf("corpus: %s\n", fs::absolute(out / "corpus.json").string().c_str());
+    return all_ok;
+}
+
+}  // namespace
+
+int runCorpus(const CorpusArgs& args) {
+    CorpusSetup setup;
+    if (!resolveLabsRoot(args.common, &setup.labs_root)) return 2;
+    const std::string& labs_root = setup.labs_root;
+    setup.corpus = args.corpus_root.empty() ? fs::path(labs_root).parent_path() / "tests" / "corpus"
+                                            : fs::path(args.corpus_root);
+    setup.reference_root = args.reference_root.empty()
+                               ? fs::path(labs_root).parent_path() / "reference_solutions"
+                               : fs::path(args.reference_root);
+    std::vector<std::string> ids = args.common.labs;
+    if (ids.empty())
+        for (const std::string& id : listLabIds(labs_root))
+            if (fs::exists(setup.corpus / id / "cases.json")) ids.push_back(id);
+    if (ids.empty()) {
+        std::cerr << "shaderlab: no lab has a corpus under " << setup.corpus.string() << "\n";
+        return 2;
+    }
+    setup.out = args.out_dir;
+    std::error_code ec;
+    fs::create_directories(setup.out, ec);
+    if (ec) {
+        std::cerr << "shaderlab: " << setup.out.string() << ": cannot create the output folder\n";
+        return 2;
+    }
+    parseBackend(args.common.backend, &setup.base.backend);
+    setup.base.labs_root = labs_root;
+    setup.base.limits.timeout_s = args.timeout_s;
+    if (args.use_reference) setup.base.reference_root = setup.reference_root.string();
+
+    std::vector<Outcome> outcomes;
+    bool readable = true;
+    for (const std::string& id : ids) runLabCorpus(setup, id, &outcomes, &readable);
+    const bool all_ok = writeCorpusSummary(setup.out, outcomes);
     if (!readable) return 2;
     return all_ok ? 0 : 1;
 }

@@ -1,4 +1,5 @@
 // Submissions on disk, content hashes, atomic writes and the results-folder lock; see batch.h.
+// Also readText() for the other sources of the library (batch_detail.h).
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -9,8 +10,10 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 
+#include "batch_detail.h"
 #include "grader/base/atomic_file.h"
 #include "shaderlab/batch/batch.h"
 
@@ -300,3 +303,18 @@ bool FolderLock::acquire(const std::string& path, std::string* error) {
 }
 
 }  // namespace shaderlab::batch
+
+namespace shaderlab::batch_detail {
+
+std::string readText(const fs::path& p, std::size_t max_bytes) {
+    std::ifstream in(p, std::ios::binary);
+    if (!in) return {};
+    std::string s;
+    char buf[1 << 16];
+    while (s.size() < max_bytes && in.read(buf, sizeof buf).gcount() > 0)
+        s.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (s.size() > max_bytes) s.resize(max_bytes);
+    return s;
+}
+
+}  // namespace shaderlab::batch_detail

@@ -3,7 +3,8 @@
 // identical work once, files written atomically, an exclusive lock on the results folder, and the
 // summary (summary.json, summary.csv) with its reader for `shaderlab merge`.
 //
-// It does not grade or render: the batch command runs `gradeSubmission` in worker processes.
+// It does not grade or render: the batch command runs `gradeSubmission` in worker processes
+// (plan.h, schedule.h, workers.h and results.h build the batch on these blocks).
 // POSIX only.
 #pragma once
 

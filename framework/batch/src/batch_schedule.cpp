@@ -1,0 +1,180 @@
+// The pool that runs a batch's jobs in worker processes; see schedule.h. It decides what runs
+// when and what a worker's end means, and prints nothing: gradeBatch (batch_run.cpp) does.
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <thread>
+
+#include "shaderlab/base/sanitizer.h"
+#include "shaderlab/batch/plan.h"
+#include "shaderlab/batch/results.h"
+#include "shaderlab/batch/schedule.h"
+#include "shaderlab/batch/workers.h"
+
+namespace fs = std::filesystem;
+
+namespace shaderlab::batch {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The pool: references first (grading jobs wait on their lab's), then labs in submission order.
+class Pool {
+  public:
+    Pool(Plan* plan, const ResultsFolder& folder, const BatchSettings& settings, const ScheduleHooks& hooks)
+        : labs_(plan->labs),
+          jobs_(plan->jobs),
+          subs_(plan->subs),
+          folder_(folder),
+          settings_(settings),
+          hooks_(hooks) {}
+
+    void run() {
+        for (Submission& sub : subs_)
+            if (sub.skipped || ready(sub)) finish(sub);
+        for (;;) {
+            startJobs();
+            if (running_.empty()) break;
+            int wstatus = 0;
+            const pid_t pid = waitpid(-1, &wstatus, WNOHANG);
+            if (pid > 0 && running_.count(pid)) {
+                reaped(pid, wstatus);
+                continue;
+            }
+            if (pid < 0 && errno == ECHILD) break;
+            for (auto& [p, j] : running_) {
+                if (std::chrono::duration<double>(Clock::now() - jobs_[j].started).count() >
+                    jobs_[j].watchdog_s)
+                    kill(-p, SIGKILL);  // reaped above as a failed job
+            }
+            if (hooks_.tick) hooks_.tick();
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        for (Submission& sub : subs_)
+            if (!sub.finished) finish(sub);  // only when a worker could not be started
+    }
+
+  private:
+    bool ready(const Submission& sub) const {
+        for (std::size_t j : sub.jobs)
+            if (!jobs_[j].done) return false;
+        return true;
+    }
+
+    void finish(Submission& sub) {
+        sub.finished = true;
+        if (hooks_.finished) hooks_.finished(sub);
+    }
+
+    bool startable(const Job& job) const {
+        if (job.done || job.pid > 0) return false;
+        if (job.kind == Job::Grade)
+            for (const LabPlan& lab : labs_)
+                if (lab.id == job.lab && lab.ref_job != SIZE_MAX && !jobs_[lab.ref_job].done) return false;
+        return true;
+    }
+
+    void complete(std::size_t j, bool ok, const std::string& why) {
+        Job& job = jobs_[j];
+        job.done = true;
+        job.ok = ok;
+        job.error = why;
+        if (job.kind == Job::Reference && !ok) {
+            if (hooks_.reference_failed) hooks_.reference_failed(job, why);
+            for (LabPlan& lab : labs_)
+                if (lab.id == job.lab) lab.goldens_root.clear();
+        }
+        for (std::size_t s : job.waiting)
+            if (!subs_[s].finished && ready(subs_[s])) finish(subs_[s]);
+    }
+
+    // Starts the first startable jobs until jobs_max run.
+    void startJobs() {
+        while (static_cast<int>(running_.size()) < settings_.jobs_max) {
+            std::size_t pick = SIZE_MAX;
+            for (std::size_t j = next_; j < jobs_.size(); ++j)
+                if (startable(jobs_[j])) {
+                    pick = j;
+                    break;
+                }
+            if (pick == SIZE_MAX) break;
+            start(pick);
+        }
+    }
+
+    void start(std::size_t pick) {
+        Job& job = jobs_[pick];
+        // A grading job of a lab whose reference failed goes against the goldens. Its result is
+        // kept apart, so that a later run with the reference grades it again.
+        if (job.kind == Job::Grade)
+            for (const LabPlan& lab : labs_) {
+                auto g = std::find(job.argv.begin(), job.argv.end(), "--goldens");
+                if (lab.id != job.lab || !lab.goldens_root.empty() || g == job.argv.end()) continue;
+                job.argv.erase(g, g + 2);
+                job.final_dir += "-goldens";
+                *(std::find(job.argv.begin(), job.argv.end(), "--out") + 1) = job.final_dir;
+            }
+        const std::string log = (folder_.state / "logs" /
+                                 ((job.kind == Job::Reference ? "reference-" : "grade-") + job.lab + "-" +
+                                  fs::path(job.final_dir).filename().string() + ".log"))
+                                    .string();
+        job.log = log;
+        // The render child below the worker watches its resident memory against `memory` and
+        // caps its address space at 4 GiB more (isolated_render.cpp); the worker gets the same cap.
+        // Not under AddressSanitizer, whose shadow memory reserves terabytes of address space
+        // (the render child's resident-memory watch still holds there).
+        // SHADERLAB_WORKER_ADDRESS_SPACE (a size such as 64M) replaces that cap, also under
+        // ASan: for machines whose driver reserves more, and for the test of a worker that dies
+        // (an ASan worker under such a cap dies at its start, which that test wants).
+        std::size_t worker_as = SHADERLAB_ASAN ? 0 : settings_.memory + (std::size_t(4) << 30);
+        if (const char* env = std::getenv("SHADERLAB_WORKER_ADDRESS_SPACE")) parseMemory(env, &worker_as, 1);
+        const Spawned s = spawnWorker(job.argv, log, worker_as);
+        if (s.pid < 0) {
+            complete(pick, false, s.error);
+            return;
+        }
+        job.pid = s.pid;
+        job.started = Clock::now();
+        running_[s.pid] = pick;
+        while (next_ < jobs_.size() && (jobs_[next_].done || jobs_[next_].pid > 0)) ++next_;
+    }
+
+    // The worker `pid` ended: its job is done when it exited 0 and its result landed.
+    void reaped(pid_t pid, int wstatus) {
+        std::error_code ec;
+        const std::size_t j = running_[pid];
+        running_.erase(pid);
+        forgetWorker(pid);
+        kill(-pid, SIGKILL);  // anything the worker left in its group
+        const Job& job = jobs_[j];
+        const bool landed = fs::exists(
+            job.kind == Job::Grade ? fs::path(job.final_dir) / "report.json" : fs::path(job.final_dir), ec);
+        const bool ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0 && landed;
+        complete(j, ok, ok ? std::string() : describeExit(wstatus) + lastLogLine(job.log));
+    }
+
+    std::vector<LabPlan>& labs_;
+    std::vector<Job>& jobs_;
+    std::vector<Submission>& subs_;
+    const ResultsFolder& folder_;
+    const BatchSettings& settings_;
+    const ScheduleHooks& hooks_;
+    std::map<pid_t, std::size_t> running_;
+    std::size_t next_ = 0;
+};
+
+}  // namespace
+
+void runJobs(Plan* plan, const ResultsFolder& folder, const BatchSettings& settings,
+             const ScheduleHooks& hooks) {
+    Pool(plan, folder, settings, hooks).run();
+}
+
+}  // namespace shaderlab::batch
