@@ -64,10 +64,11 @@ std::string shellQuote(const std::string& s) {
 
 const char* kSetupScript = R"sh(#!/usr/bin/env bash
 # Gradescope runs this once, when it builds the autograder's image: the Debian packages shaderlab
-# needs and the build, with the course's own scripts/setup.sh. Written by `shaderlab gradescope-bundle`.
+# needs for grading (no viewer, tests or benchmarks) and the build, with the course's own
+# scripts/setup.sh --grader-only. Written by `shaderlab gradescope-bundle`.
 set -euo pipefail
 cd "$(dirname "$0")"
-bash scripts/setup.sh -DCMAKE_BUILD_TYPE=Release -DSHADERLAB_BUILD_TESTS=OFF -DSHADERLAB_BUILD_BENCH=OFF
+bash scripts/setup.sh --grader-only -DCMAKE_BUILD_TYPE=Release
 )sh";
 
 // A lab's student files, found anywhere in an upload that does not mirror labs/ (a student who
