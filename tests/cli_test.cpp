@@ -22,10 +22,11 @@ struct CliRun {
     std::string output;
 };
 
-// Runs the program with `args` from the working directory `cwd` (default: the test's own).
-CliRun runCli(const std::string& args, const std::string& cwd = "") {
+// Runs the program with `args` from the working directory `cwd` (default: the test's own), with
+// `env` ("NAME=value ...") before it.
+CliRun runCli(const std::string& args, const std::string& cwd = "", const std::string& env = "") {
     CliRun r;
-    const std::string cmd = (cwd.empty() ? std::string() : "cd '" + cwd + "' && ") +
+    const std::string cmd = (cwd.empty() ? std::string() : "cd '" + cwd + "' && ") + env +
                             std::string(SHADERLAB_CLI) + " " + args + " 2>&1";
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
@@ -272,3 +273,21 @@ TEST(CliCompare, JsonForIdenticalAndDifferentImages) {
 }
 
 }  // namespace
+
+// Without OSMesa (Mesa 25.1 and later ship none) the default backend renders through EGL and says
+// so in one line; naming OSMesa explicitly is then an error that names the library. The library is
+// made unopenable with SHADERLAB_OSMESA_LIBRARY.
+TEST(CliBackend, AutoFallsBackToEglWhereOSMesaCannotBeOpened) {
+    const std::string no_osmesa = "SHADERLAB_OSMESA_LIBRARY=/nonexistent/libOSMesa.so.8 ";
+    const CliRun fallback = runCli("info", "", no_osmesa);
+    ASSERT_EQ(fallback.exit_code, 0) << fallback.output;
+    EXPECT_NE(fallback.output.find("backend:  egl"), std::string::npos) << fallback.output;
+    EXPECT_NE(fallback.output.find("cannot open /nonexistent/libOSMesa.so.8"), std::string::npos)
+        << fallback.output;
+    EXPECT_NE(fallback.output.find("rendering with EGL (surfaceless) instead"), std::string::npos)
+        << fallback.output;
+
+    const CliRun forced = runCli("info --backend osmesa", "", no_osmesa);
+    EXPECT_EQ(forced.exit_code, 2) << forced.output;
+    EXPECT_NE(forced.output.find("/nonexistent/libOSMesa.so.8"), std::string::npos) << forced.output;
+}

@@ -91,7 +91,7 @@ int runBatch(const BatchArgs& args) {
 
     batch::killWorkersOnSignals();
     settings.exe = batch::selfExe();
-    settings.backend = args.common.backend;
+    settings.backend = backendName(chooseBackend(args.common.backend));  // workers get the resolved one
     const fs::path renderer_log = folder.state / "logs" / "renderer.log";
     settings.renderer = batch::probeRenderer(settings.exe, settings.backend, renderer_log.string());
     if (settings.renderer.empty()) {

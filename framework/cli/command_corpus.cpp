@@ -476,7 +476,7 @@ int runCorpus(const CorpusArgs& args) {
         std::cerr << "shaderlab: " << setup.out.string() << ": cannot create the output folder\n";
         return 2;
     }
-    parseBackend(args.common.backend, &setup.base.backend);
+    setup.base.backend = chooseBackend(args.common.backend);
     setup.base.labs_root = labs_root;
     setup.base.limits.timeout_s = args.timeout_s;
     if (args.use_reference) setup.base.reference_root = setup.reference_root.string();
@@ -513,7 +513,7 @@ std::vector<std::string> writeHints(const std::string& labs_root, const std::str
         }
         if (!loadCases(cases_file, parsed.spec, &cases, &errors)) continue;
         GradeOptions options;
-        parseBackend(backend, &options.backend);
+        options.backend = chooseBackend(backend);
         options.labs_root = labs_root;
         options.labs = {id};
         options.goldens_root = stored_root;

@@ -223,7 +223,7 @@ int runGrade(const GradeArgs& args) {
         return 2;
     }
     GradeOptions options;
-    parseBackend(args.common.backend, &options.backend);
+    options.backend = chooseBackend(args.common.backend);
     if (!selectLabs(args.common, args.common.labs, &options.labs_root, &options.labs)) return 2;
     options.out_dir = args.out_dir;
     options.limits = isolationLimits(args.limits);
@@ -255,7 +255,7 @@ int runGrade(const GradeArgs& args) {
 
 int runCheck(const CheckArgs& args) {
     GradeOptions options;
-    parseBackend(args.common.backend, &options.backend);
+    options.backend = chooseBackend(args.common.backend);
     if (!selectLabs(args.common, {args.lab}, &options.labs_root, &options.labs)) return 2;
     options.limits = isolationLimits(args.limits);
     if (!args.no_reference) options.reference_root = defaultReferenceRoot(options.labs_root);
@@ -352,8 +352,7 @@ int runGoldens(const GoldensArgs& args) {
     const std::string reference_root =
         args.reference_root.empty() ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
                                     : args.reference_root;
-    Backend backend{};
-    parseBackend(args.common.backend, &backend);
+    const Backend backend = chooseBackend(args.common.backend);
     std::vector<std::string> errors =
         writeGoldens(reference_root, labs_root, args.common.labs, backend, args.golden_root);
     const std::string where = args.golden_root.empty() ? labs_root : args.golden_root;

@@ -235,7 +235,7 @@ int runGradescopeRun(const GradescopeRunArgs& args) {
     options.labs = args.common.labs.empty() ? all_ids : args.common.labs;
     options.reference_root = args.reference_root;
     options.limits.timeout_s = args.timeout_s;
-    parseBackend(args.common.backend, &options.backend);
+    options.backend = chooseBackend(args.common.backend);
 
     char tmpl[] = "/tmp/shaderlab-gradescope-XXXXXX";
     if (!mkdtemp(tmpl)) {

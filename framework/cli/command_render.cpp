@@ -24,9 +24,20 @@ void printDiagnostics(const LabRender& r, const std::string& lab_id) {
 
 }  // namespace
 
+Backend chooseBackend(const std::string& name) {
+    Backend backend = Backend::OSMesa;
+    std::string note;
+    if (!parseBackend(name, &backend, &note)) return Backend::OSMesa;  // CLI11 let through only known names
+    static bool said = false;
+    if (!note.empty() && !said) {
+        std::cerr << "shaderlab: " << note << "\n";
+        said = true;
+    }
+    return backend;
+}
+
 int runInfo(const std::string& backend_name) {
-    Backend backend{};
-    parseBackend(backend_name, &backend);
+    const Backend backend = chooseBackend(backend_name);
     ContextResult ctx = createHeadlessContext(backend);
     if (!ctx.context) {
         std::cerr << "shaderlab: " << ctx.error << "\n";
@@ -53,8 +64,7 @@ int runRender(const RenderArgs& args) {
         std::cerr << "shaderlab: " << args.submission << ": submission folder not found\n";
         return 2;
     }
-    Backend backend{};
-    parseBackend(args.common.backend, &backend);
+    const Backend backend = chooseBackend(args.common.backend);
     ContextResult ctx = createHeadlessContext(backend);
     if (!ctx.context) {
         std::cerr << "shaderlab: " << ctx.error << "\n";

@@ -70,7 +70,7 @@ int runView(const ViewArgs& args) {
         if (fs::is_directory(fs::path(root) / args.lab, ec))
             options.reference_root = fs::absolute(root).lexically_normal().string();
     }
-    parseBackend(args.common.backend, &options.backend);
+    options.backend = chooseBackend(args.common.backend);
     options.timeout_s = args.timeout_s;
     options.scene = args.scene;
     options.image = args.image;

@@ -13,7 +13,7 @@
 namespace shaderlab::cli {
 
 struct CommonOptions {
-    std::string backend = "osmesa";
+    std::string backend = "auto";
     std::string labs_root;          // empty: defaultLabsRoot()
     std::vector<std::string> labs;  // --lab, repeatable; empty: every lab the labs root has
 };
@@ -49,6 +49,9 @@ struct RenderArgs {
 int runRender(const RenderArgs& args);
 
 int runInfo(const std::string& backend);
+// The backend --backend names ("auto" resolved: OSMesa where libOSMesa opens, else EGL); the first
+// time "auto" falls back to EGL, says why on stderr in one line.
+Backend chooseBackend(const std::string& name);
 
 struct GradeArgs {
     CommonOptions common;
@@ -150,7 +153,7 @@ int runBatch(const BatchArgs& args);
 // The worker the batch starts for one unit of work (not for people: hidden from --help).
 struct BatchWorkerArgs {
     std::string mode;  // grade | reference
-    std::string labs_root, lab, backend = "osmesa";
+    std::string labs_root, lab, backend = "auto";
     std::string submission, out_dir, goldens_root, reference_root;
     double timeout_s = 60.0;
     double compile_timeout_s = 30.0;

@@ -25,8 +25,9 @@ void addLimits(CLI::App* cmd, LimitArgs* limits, const char* draw_help) {
 }
 
 void addCommon(CLI::App* cmd, CommonOptions* common) {
-    cmd->add_option("--backend", common->backend, "OpenGL context backend")
-        ->check(CLI::IsMember({"osmesa", "egl"}))
+    cmd->add_option("--backend", common->backend,
+                    "OpenGL context backend: auto (OSMesa where it is installed, else EGL), osmesa or egl")
+        ->check(CLI::IsMember({"auto", "osmesa", "egl"}))
         ->capture_default_str();
     cmd->add_option("--labs", common->labs_root, "folder holding the labs (default: the bundled labs/)");
     cmd->add_option("--lab", common->labs, "lab id, e.g. 01-phong (repeatable; default: all labs)");
@@ -75,7 +76,7 @@ CLI::App* addCheck(CLI::App& app, CheckArgs* args) {
     cmd->add_option("--out", args->out_dir, "where images and the report go (default: out/check)");
     cmd->add_flag("--no-reference", args->no_reference, "use the stored golden images");
     addLimits(cmd, &args->limits, "seconds the lab may take to draw its scenes");
-    cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
+    cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
     cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
     return cmd;
 }
@@ -108,7 +109,7 @@ CLI::App* addView(CLI::App& app, ViewArgs* args) {
     cmd->add_option("--screenshot", args->screenshot,
                     "at exit, save the picture as shown, one pixel per image pixel (PNG)");
     cmd->add_option("--screenshot-window", args->screenshot_window, "at exit, save the whole window (PNG)");
-    cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
+    cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
     cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
     return cmd;
 }
@@ -124,7 +125,7 @@ CLI::App* addWatch(CLI::App& app, WatchArgs* args) {
     addLimits(cmd, &args->check.limits, "seconds the lab may take to draw its scenes");
     cmd->add_option("--max-checks", args->max_checks, "stop after N checks (default: until Ctrl-C)")
         ->check(CLI::Range(1, 1000000));
-    cmd->add_option("--backend", args->check.common.backend)->check(CLI::IsMember({"osmesa", "egl"}));
+    cmd->add_option("--backend", args->check.common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
     cmd->add_option("--labs", args->check.common.labs_root, "folder holding the labs");
     return cmd;
 }
@@ -268,7 +269,7 @@ CLI::App* addGradescopeRun(CLI::App& app, GradescopeRunArgs* args) {
 
 CLI::App* addInfo(CLI::App& app, std::string* backend) {
     CLI::App* cmd = app.add_subcommand("info", "print the OpenGL context a backend gives");
-    cmd->add_option("--backend", *backend)->check(CLI::IsMember({"osmesa", "egl"}));
+    cmd->add_option("--backend", *backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
     return cmd;
 }
 
@@ -307,7 +308,7 @@ int main(int argc, char** argv) {
     CLI::App* bundle_cmd = addGradescopeBundle(app, &bundle);
     GradescopeRunArgs gs_run;
     CLI::App* gs_run_cmd = addGradescopeRun(app, &gs_run);
-    std::string info_backend = "osmesa";
+    std::string info_backend = "auto";
     CLI::App* info_cmd = addInfo(app, &info_backend);
 
     try {

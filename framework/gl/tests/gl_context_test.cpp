@@ -38,6 +38,21 @@ TEST(GlContextNames, ParseBackend) {
     EXPECT_FALSE(shaderlab::parseBackend("vulkan", &b));
 }
 
+// "auto" is OSMesa, silently, where libOSMesa opens, and EGL with a note saying why where it does not.
+TEST(GlContextNames, AutoIsOSMesaWhereItOpensElseEglWithANote) {
+    Backend b{};
+    std::string note = "stale";
+    ASSERT_TRUE(shaderlab::parseBackend("auto", &b, &note));
+    if (b == Backend::OSMesa) {
+        EXPECT_EQ(note, "");
+    } else {
+        EXPECT_EQ(b, Backend::Egl);
+        EXPECT_NE(note.find("rendering with EGL (surfaceless) instead"), std::string::npos) << note;
+    }
+    ASSERT_TRUE(shaderlab::parseBackend("egl", &b, &note));
+    EXPECT_EQ(note, "") << "an explicit backend needs no note";
+}
+
 // A context that is too old is refused with a message naming the version it has. The fake
 // driver answers only glGetString, as an OpenGL 2.1 implementation would.
 const GLubyte* fakeGetString(GLenum name) {
