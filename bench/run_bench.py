@@ -542,7 +542,7 @@ def write_page(res, figs, elapsed_s, command):
     if hl.get("labs"):
         L.append("| known-mistake pictures of a passing lab | %.0f ms per lab (read for every lab) | 0 ms | read at the first failing image (`framework/grading/src/grading.cpp`); the cost is measured on the starter code, which fails |" %
                  (hl["total_ms"] / hl["labs"]))
-    L.append("| the reference picture of each graded image, grading against goldens | encoded again from the golden's pixels | the golden PNG copied | `copyOrWriteImage` in `framework/grading/src/grading.cpp`: one PNG encode of the four or five per image saved (part of *report pictures* above) |")
+    L.append("| the reference picture of each graded image, grading against goldens | encoded again from the golden's pixels | the golden PNG copied | `copyOrWriteImage` in `framework/grading/src/report_pictures.cpp`: one PNG encode of the four or five per image saved (part of *report pictures* above) |")
     comp = sum(x["compiles"] for x in g)
     L.append("| shader compilation | - | %d program builds for %d scenes | programs are built once per lab (per vertex, fragment and attachment layout) and shared by every scene and pass; already so before this page |" %
              (comp, sum(x["scenes"] for x in g)))
@@ -551,8 +551,8 @@ def write_page(res, figs, elapsed_s, command):
     L.append("| passes no graded image depends on | run | not run when grading (`render --all-passes` and the viewer run every pass); in the bundled labs: %s | `LabRunner::findNeededPasses` in `framework/render/src/renderer.cpp`; test `LabFeatures.PassNoGradedImageDependsOnIsNotRun` |" % listed)
     L.append("| reference images | %.0f ms per lab (rendering the reference) | %.0f ms per lab (`--no-reference`: stored goldens) | the goldens are the reference images kept; `shaderlab goldens` refreshes them |" %
              (mean_lab_ref, mean_lab))
-    L.append("| depth buffers of targets no pass tests, writes or grades depth in | allocated and cleared every scene | not allocated | `LabRunner::createTargets` in `framework/render/src/renderer.cpp`. No bundled lab has such a target (their full-screen targets say `\"depth\": \"none\"`); with those lines deleted from 05 and 06, rendering both took 1.8 MB less peak memory and drew identical images (measured by hand on 2026-11-25, not by this script) |")
-    L.append("| vertex attributes a program does not read | - | TANGENT, COLOR_0 and TEXCOORD_1 uploaded on the first draw by a program that declares them | `bindOptionalAttributes` in `framework/render/src/renderer.cpp`; positions, normals and TEXCOORD_0 are always uploaded |\n")
+    L.append("| depth buffers of targets no pass tests, writes or grades depth in | allocated and cleared every scene | not allocated | `LabRunner::createTargets` in `framework/render/src/lab_targets.cpp`. No bundled lab has such a target (their full-screen targets say `\"depth\": \"none\"`); with those lines deleted from 05 and 06, rendering both took 1.8 MB less peak memory and drew identical images (measured by hand on 2026-11-25, not by this script) |")
+    L.append("| vertex attributes a program does not read | - | TANGENT, COLOR_0 and TEXCOORD_1 uploaded on the first draw by a program that declares them | `bindOptionalAttributes` in `framework/render/src/scene_upload.cpp`; positions, normals and TEXCOORD_0 are always uploaded |\n")
 
     # Metrics
     L.append("## Metric time against image size\n")
