@@ -1,0 +1,24 @@
+# shaderlab for students and graders on any OS: the grader's own renderer (Mesa's llvmpipe), so a
+# verdict in this container is the grader's verdict. Debian 13, built by the same setup script as
+# everywhere else (grader-only: no window, no tests), run as a non-root user, the course mounted.
+#
+#   docker build -t shaderlab .
+#   docker run --rm -it -v "$PWD":/course shaderlab shaderlab check 01-phong   # in the course's folder
+#   docker run --rm -v "$PWD":/course shaderlab shaderlab grade work --out out/grade
+#   docker run --rm -it -v "$PWD":/course shaderlab                            # a shell
+#
+# The course (the folder holding labs/) is found from the working folder upward, like git finds
+# its repository; /course is the working folder. docs/students.md walks through it.
+FROM debian:trixie-slim
+
+COPY . /opt/shaderlab
+RUN bash /opt/shaderlab/scripts/setup.sh --grader-only -DCMAKE_BUILD_TYPE=Release \
+ && ln -s /opt/shaderlab/build/framework/shaderlab /usr/local/bin/shaderlab \
+ && rm -rf /var/lib/apt/lists/* /opt/shaderlab/build/CMakeFiles \
+ && useradd --create-home --uid 1000 student \
+ && mkdir -p /course && chown student:student /course
+
+USER student
+WORKDIR /course
+VOLUME /course
+CMD ["bash"]
