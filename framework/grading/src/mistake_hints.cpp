@@ -38,6 +38,7 @@ bool loadLabHints(const std::string& hints_dir, LabHints* out, std::string* erro
     out->factor = doc.value("factor", 2);
     out->min_psnr_db = doc.value("min_psnr_db", 40.0);
     out->unstable = doc.value("unstable", std::vector<std::string>{});
+    out->renderer = doc.value("renderer", "");
     for (const json& h : doc["hints"]) {
         MistakeHint m;
         m.mistake = h.value("mistake", "");
@@ -76,7 +77,8 @@ bool writeLabHints(const std::string& hints_dir, const LabHints& hints, std::str
                       {"factor", hints.factor},
                       {"min_psnr_db", hints.min_psnr_db},
                       {"hints", list},
-                      {"unstable", hints.unstable}};
+                      {"unstable", hints.unstable},
+                      {"renderer", hints.renderer}};
     std::ofstream out(fs::path(hints_dir) / "hints.json", std::ios::binary);
     out << doc.dump(1) << "\n";
     if (!out) {

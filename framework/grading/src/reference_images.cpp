@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "grader/base/atomic_file.h"
 #include "grader/metrics/image.h"
 #include "grading_detail.h"
 #include "shaderlab/base/timings.h"
@@ -124,6 +125,12 @@ std::vector<std::string> writeGoldens(const std::string& reference_root, const s
         std::error_code ec;
         fs::remove_all(fs::path(lab_dir) / "golden", ec);  // stale goldens of renamed scenes go too
         fs::create_directories(fs::path(lab_dir) / "golden", ec);
+        // Which renderer drew them: on the same one a fresh set must equal them to the bit, on
+        // another (a newer Mesa) match them within the lab's thresholds (tests/goldens_test.cpp).
+        std::string renderer_error;
+        if (!grader::writeFileAtomically((fs::path(lab_dir) / "golden" / "renderer.txt").string(),
+                                         r.renderer + "\n", &renderer_error))
+            errors.push_back(id + ": " + renderer_error);
         const std::vector<GradedImage> graded = gradedImages(parsed.spec);
         for (const SceneRender& s : r.render.scenes) {
             if (!s.error.empty()) errors.push_back(id + ": scene '" + s.scene + "': " + s.error);

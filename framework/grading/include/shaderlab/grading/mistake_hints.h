@@ -34,6 +34,9 @@ struct LabHints {
     // Pictures left out because the mistake does not draw them the same way twice (it reads
     // memory nothing wrote): the file names they would have.
     std::vector<std::string> unstable;
+    // The GL renderer the pictures were drawn with (GL_RENDERER and GL_VERSION): on the same one
+    // a fresh set must equal the stored one to the bit, on another only match it (min_psnr_db).
+    std::string renderer;
 };
 
 // What a failing picture of a mistake becomes in storage: downsampled, 8-bit RGB.
