@@ -62,8 +62,7 @@ TEST(GlslExplain, AFragmentInputWithoutAnOutputIsPlacedAtItsDeclarationWithAGues
     EXPECT_EQ(found[0].file, "phong.frag");
     EXPECT_EQ(found[0].line, 2);
     EXPECT_NE(found[0].message.find("did you mean `v_normal`?"), std::string::npos) << found[0].message;
-    EXPECT_EQ(found[0].driver_message.find("v_normals") != std::string::npos, true)
-        << found[0].driver_message;
+    EXPECT_NE(found[0].driver_message.find("v_normals"), std::string::npos) << found[0].driver_message;
 }
 
 TEST(GlslExplain, AnUnknownLinkMessagePassesThroughWithItsWords) {
