@@ -1,11 +1,10 @@
-// `shaderlab batch` and `merge`, and their building blocks (shaderlab/batch.h): submitted zips
-// unpacked safely or refused with one clear status, summaries, resuming after SIGKILL with no
-// process left behind, identical work graded once, shards merged into the same summary.
+// `shaderlab batch` and `merge` over the program (their building blocks have their own tests in
+// framework/batch/tests/): submitted zips refused with one clear status, summaries, resuming after
+// SIGKILL with no process left behind, identical work graded once, shards merged into the same
+// summary.
 // The batches grade 01-phong only, so that every test here stays within a few seconds of work.
 #include "shaderlab/batch/batch.h"
 
-#include <archive.h>
-#include <archive_entry.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -20,109 +19,14 @@
 #include <set>
 #include <thread>
 
+#include "batch_test_support.h"
+
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 using namespace shaderlab;
+using namespace shaderlab::batch_testing;
 
 namespace {
-
-const fs::path kSource = SHADERLAB_SOURCE_DIR;
-const std::string kLab = "01-phong";
-
-fs::path scratch(const std::string& name) {
-    const fs::path p =
-        fs::temp_directory_path() / ("shaderlab_batch_" + name + "_" + std::to_string(getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-}
-
-std::string readFile(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-void writeFile(const fs::path& p, const std::string& text) {
-    fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << text;
-}
-
-struct ZipEntry {
-    std::string name;
-    std::string data;
-    unsigned type{AE_IFREG};
-    std::string link{};  // symlink target
-};
-
-// Writes a zip with libarchive, any entry name allowed (the point is to write hostile ones).
-void writeZip(const fs::path& path, const std::vector<ZipEntry>& entries) {
-    archive* a = archive_write_new();
-    archive_write_set_format_zip(a);
-    ASSERT_EQ(archive_write_open_filename(a, path.c_str()), ARCHIVE_OK);
-    for (const ZipEntry& e : entries) {
-        archive_entry* entry = archive_entry_new();
-        archive_entry_set_pathname_utf8(entry, e.name.c_str());
-        archive_entry_set_filetype(entry, e.type);
-        archive_entry_set_perm(entry, 0644);
-        if (e.type == AE_IFLNK) archive_entry_set_symlink(entry, e.link.c_str());
-        archive_entry_set_size(entry, e.type == AE_IFREG ? static_cast<la_int64_t>(e.data.size()) : 0);
-        archive_write_header(a, entry);
-        if (e.type == AE_IFREG && !e.data.empty()) archive_write_data(a, e.data.data(), e.data.size());
-        archive_entry_free(entry);
-    }
-    archive_write_close(a);
-    archive_write_free(a);
-}
-
-// A zip of one empty entry whose Unix mode (in the central directory's external attributes) is
-// `mode`: how a device file or a FIFO travels in a zip (APPNOTE.TXT 4.3.7, 4.3.12, 4.4.15).
-std::string zipWithUnixMode(const std::string& name, std::uint32_t mode) {
-    std::string z;
-    auto u16 = [&](unsigned v) {
-        z += static_cast<char>(v & 0xFF);
-        z += static_cast<char>((v >> 8) & 0xFF);
-    };
-    auto u32 = [&](std::uint32_t v) {
-        u16(v & 0xFFFF);
-        u16(v >> 16);
-    };
-    u32(0x04034b50);  // local file header: stored, empty (CRC 0), dated 1980-01-01
-    for (unsigned v : {10u, 0u, 0u, 0u, 0x21u}) u16(v);
-    for (int i = 0; i < 3; ++i) u32(0);
-    u16(static_cast<unsigned>(name.size()));
-    u16(0);
-    z += name;
-    const std::uint32_t central = static_cast<std::uint32_t>(z.size());
-    u32(0x02014b50);  // central directory header, made by Unix (3)
-    for (unsigned v : {0x0314u, 10u, 0u, 0u, 0u, 0x21u}) u16(v);
-    for (int i = 0; i < 3; ++i) u32(0);
-    u16(static_cast<unsigned>(name.size()));
-    for (int i = 0; i < 4; ++i) u16(0);
-    u32(mode << 16);
-    u32(0);
-    z += name;
-    const std::uint32_t size = static_cast<std::uint32_t>(z.size()) - central;
-    u32(0x06054b50);  // end of central directory
-    for (unsigned v : {0u, 0u, 1u, 1u}) u16(v);
-    u32(size);
-    u32(central);
-    u16(0);
-    return z;
-}
-
-// The reference solution's files of a lab, as zip entries under `prefix`.
-std::vector<ZipEntry> referenceEntries(const std::string& prefix, const std::string& extra = "") {
-    std::vector<ZipEntry> out;
-    for (const fs::directory_entry& e : fs::directory_iterator(kSource / "reference_solutions" / kLab))
-        out.push_back({prefix + kLab + "/" + e.path().filename().string(), readFile(e.path()) + extra});
-    return out;
-}
-
-void copyReference(const fs::path& into, const std::string& extra = "") {
-    fs::create_directories(into / kLab);
-    for (const fs::directory_entry& e : fs::directory_iterator(kSource / "reference_solutions" / kLab))
-        writeFile(into / kLab / e.path().filename(), readFile(e.path()) + extra);
-}
 
 struct CliRun {
     int exit_code = -1;
@@ -165,165 +69,6 @@ std::vector<int> processesMarked(const std::string& marker) {
         if (env.find(marker) != std::string::npos) pids.push_back(std::stoi(name));
     }
     return pids;
-}
-
-// ---- archives -----------------------------------------------------------------------------------
-
-TEST(BatchArchive, UnpacksNestedFoldersWithNamesKept) {
-    const fs::path dir = scratch("unpack");
-    std::vector<ZipEntry> entries = referenceEntries("Zoë Ångström - 12 May/submission/");
-    entries.push_back({"Zoë Ångström - 12 May/submission/notes à lire.txt", "hello"});
-    entries.push_back({"__MACOSX/._x", "resource fork"});
-    entries.push_back(
-        {"Zoë Ångström - 12 May/submission/" + kLab + "/same.frag", "", AE_IFLNK, "phong.frag"});
-    writeZip(dir / "in.zip", entries);
-    const batch::ExtractResult x = batch::extractZip((dir / "in.zip").string(), (dir / "out").string());
-    ASSERT_EQ(x.status, "ok") << x.message;
-    EXPECT_EQ(x.files, entries.size());
-    const std::string root = batch::unwrapSubmissionRoot((dir / "out").string(), {kLab});
-    EXPECT_EQ(fs::path(root), dir / "out" / "Zoë Ångström - 12 May" / "submission");
-    EXPECT_TRUE(fs::is_regular_file(fs::path(root) / "notes à lire.txt"));
-    EXPECT_EQ(readFile(fs::path(root) / kLab / "phong.frag"),
-              readFile(kSource / "reference_solutions" / kLab / "phong.frag"));
-    EXPECT_TRUE(fs::is_symlink(fs::path(root) / kLab / "same.frag"));  // a link inside is kept
-}
-
-TEST(BatchArchive, RefusesEntriesThatLeaveTheFolder) {
-    const fs::path dir = scratch("slip");
-    struct Case {
-        std::vector<ZipEntry> entries;
-        std::string status, words;
-    };
-    const std::vector<Case> cases = {
-        {{{"ok.txt", "x"}, {"../../escaped.txt", "zip-slip"}}, "unsafe_archive", "'..'"},
-        {{{"/tmp/escaped.txt", "absolute"}}, "unsafe_archive", "absolute path"},
-        {{{"a/..\\..\\escaped.txt", "windows"}}, "unsafe_archive", "'..'"},
-        {{{"a/link", "", AE_IFLNK, "/etc/passwd"}}, "unsafe_archive", "outside the submission"},
-        {{{"a/link", "", AE_IFLNK, "../../etc/passwd"}}, "unsafe_archive", "outside the submission"},
-        {{{"a.txt", "1"}, {"a.txt", "2"}}, "unsafe_archive", "appears twice"},
-    };
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-        const fs::path zip = dir / ("case" + std::to_string(i) + ".zip");
-        writeZip(zip, cases[i].entries);
-        fs::create_directories(dir / ("out" + std::to_string(i)));
-        const batch::ExtractResult x =
-            batch::extractZip(zip.string(), (dir / ("out" + std::to_string(i)) / "x").string());
-        EXPECT_EQ(x.status, cases[i].status) << i << ": " << x.message;
-        EXPECT_NE(x.message.find(cases[i].words), std::string::npos) << i << ": " << x.message;
-    }
-    EXPECT_FALSE(fs::exists(dir / "escaped.txt"));
-    EXPECT_FALSE(fs::exists(fs::temp_directory_path() / "escaped.txt"));
-    // Device files are refused; a FIFO's mode (which libarchive reads as a plain file) and a plain
-    // file's give a plain file: nothing but files, folders and checked symlinks is ever made.
-    const std::vector<std::pair<std::uint32_t, std::string>> modes = {
-        {0020644, "unsafe_archive"}, {0060644, "unsafe_archive"}, {0010644, ""}, {0100644, "ok"}};
-    for (std::size_t i = 0; i < modes.size(); ++i) {
-        const fs::path zip = dir / ("mode" + std::to_string(i) + ".zip");
-        writeFile(zip, zipWithUnixMode("lab/dev", modes[i].first));
-        const fs::path into = dir / ("m" + std::to_string(i));
-        const batch::ExtractResult x = batch::extractZip(zip.string(), into.string());
-        if (!modes[i].second.empty()) {
-            EXPECT_EQ(x.status, modes[i].second) << std::oct << modes[i].first;
-        }
-        if (x.status == "ok") {
-            EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(into / "lab" / "dev")))
-                << std::oct << modes[i].first;
-        } else {
-            EXPECT_NE(x.message.find("not a file, a folder or a symlink"), std::string::npos) << x.message;
-        }
-    }
-}
-
-TEST(BatchArchive, StopsZipBombsAndNamesBrokenZips) {
-    const fs::path dir = scratch("bomb");
-    writeZip(dir / "bomb.zip", {{"zeros.bin", std::string(40u << 20, '\0')}});
-    ASSERT_LT(fs::file_size(dir / "bomb.zip"), 1u << 20);
-    batch::ExtractResult x = batch::extractZip((dir / "bomb.zip").string(), (dir / "o1").string());
-    EXPECT_EQ(x.status, "too_large") << x.message;
-    EXPECT_LE(x.bytes, 17u << 20);  // stopped as the data came, not after
-    // Within the absolute limits, the ratio alone stops it.
-    batch::ArchiveLimits lax;
-    lax.max_entry_bytes = lax.max_total_bytes = 1u << 30;
-    x = batch::extractZip((dir / "bomb.zip").string(), (dir / "o2").string(), lax);
-    EXPECT_EQ(x.status, "too_large");
-    EXPECT_NE(x.message.find("zip bomb"), std::string::npos) << x.message;
-
-    writeFile(dir / "garbage.zip", std::string("PK\x03\x04 not really a zip at all") + std::string(200, 'x'));
-    x = batch::extractZip((dir / "garbage.zip").string(), (dir / "o3").string());
-    EXPECT_EQ(x.status, "bad_archive") << x.message;
-    writeFile(dir / "short.zip", "PK");
-    x = batch::extractZip((dir / "short.zip").string(), (dir / "o4").string());
-    EXPECT_EQ(x.status, "bad_archive") << x.message;
-    // Empty zips unpack to nothing; the batch then says "empty".
-    writeFile(dir / "zero.zip", "");
-    EXPECT_EQ(batch::extractZip((dir / "zero.zip").string(), (dir / "o5").string()).status, "ok");
-    writeZip(dir / "none.zip", {});
-    x = batch::extractZip((dir / "none.zip").string(), (dir / "o6").string());
-    EXPECT_EQ(x.status, "ok") << x.message;
-    EXPECT_EQ(x.files, 0u);
-}
-
-// ---- small pieces -------------------------------------------------------------------------------
-
-TEST(BatchSummary, CsvQuotesFieldsAndDefusesFormulas) {
-    batch::Summary s;
-    s.labs = {kLab};
-    batch::SummaryRow r;
-    r.student = "=HYPERLINK(\"x\")";
-    r.status = "graded";
-    r.message = "line one, \"two\"\nthree";
-    r.total = 7.5;
-    r.max_total = 10;
-    r.labs = {{kLab, 7.5, 10, "failed"}};
-    s.rows.push_back(r);
-    const std::string csv = batch::summaryToCsv(s);
-    EXPECT_NE(csv.find("student,status,total,max_total,01-phong,01-phong status,message\r\n"),
-              std::string::npos);
-    EXPECT_NE(
-        csv.find("\"'=HYPERLINK(\"\"x\"\")\",graded,7.50,10.00,7.50,failed,\"line one, \"\"two\"\"\nthree\""),
-        std::string::npos)
-        << csv;
-    batch::Summary back;
-    std::string err;
-    ASSERT_TRUE(batch::summaryFromJson(batch::summaryToJson(s), &back, &err)) << err;
-    ASSERT_EQ(back.rows.size(), 1u);
-    EXPECT_EQ(back.rows[0].student, r.student);
-    EXPECT_EQ(back.rows[0].labs[0].status, "failed");
-    EXPECT_DOUBLE_EQ(back.rows[0].total, 7.5);
-}
-
-TEST(BatchFiles, PrintableEscapesControlsAndBadUtf8) {
-    EXPECT_EQ(batch::printable("Zoë\033[31m red\xff"), "Zoë\\x1B[31m red\\xFF");
-    EXPECT_EQ(batch::printable(std::string(50, 'a'), 10), std::string(10, 'a') + "...");
-}
-
-TEST(BatchFiles, AtomicWriteReplacesASymlinkInsteadOfFollowingIt) {
-    const fs::path dir = scratch("atomic");
-    writeFile(dir / "victim.txt", "keep me");
-    fs::create_symlink(dir / "victim.txt", dir / "report.json");
-    std::string err;
-    ASSERT_TRUE(batch::writeFileAtomically((dir / "report.json").string(), "{}", &err)) << err;
-    EXPECT_EQ(readFile(dir / "victim.txt"), "keep me");
-    EXPECT_FALSE(fs::is_symlink(dir / "report.json"));
-    EXPECT_EQ(readFile(dir / "report.json"), "{}");
-    EXPECT_FALSE(batch::writeFileAtomically((dir / "no" / "such" / "x").string(), "{}", &err));
-    EXPECT_NE(err.find("No such file"), std::string::npos) << err;
-}
-
-TEST(BatchFiles, TreeHashSeesContentNotTimes) {
-    const fs::path dir = scratch("hash");
-    copyReference(dir / "a");
-    copyReference(dir / "b");
-    auto hashOf = [](const fs::path& p) {
-        batch::Hasher h;
-        EXPECT_TRUE(h.addTree(p.string(), p.string()));
-        return h.hex();
-    };
-    EXPECT_EQ(hashOf(dir / "a"), hashOf(dir / "b"));
-    writeFile(dir / "b" / kLab / "phong.frag", readFile(dir / "b" / kLab / "phong.frag") + " ");
-    EXPECT_NE(hashOf(dir / "a"), hashOf(dir / "b"));
-    fs::create_symlink("/etc/passwd", dir / "a" / "stolen");  // hashed as its target's name only
-    EXPECT_NE(hashOf(dir / "a"), hashOf(dir / "b"));
 }
 
 // ---- the command --------------------------------------------------------------------------------
