@@ -666,8 +666,18 @@ class SceneWriter {
         tinygltf::Value::Object ext;
         ext["light"] = tinygltf::Value(static_cast<int>(model_.lights.size() - 1));
         node(n).extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
+        setLightIndex(node(n), static_cast<int>(model_.lights.size() - 1), 0);
         return n;
     }
+
+    // tinygltf 2.8 and later keep a node's light in Node::light and write the extension from it
+    // alone (dropping one set by hand); before, only the extension exists. Both give one file.
+    template <typename Node>
+    static auto setLightIndex(Node& node, int index, int) -> decltype(node.light = index, void()) {
+        node.light = index;
+    }
+    template <typename Node>
+    static void setLightIndex(Node&, int, long) {}
 
     template <typename V>
     static void putVec(unsigned char* dst, const V& v) {

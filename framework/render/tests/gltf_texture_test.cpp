@@ -53,12 +53,16 @@ int texel(int i, int j, int c) { return c == 3 ? 255 : (188 + 17 * i + 5 * j + 4
 
 float srgbToLinear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
 
-// The PNG signature and an IHDR chunk claiming 16000x16000 RGBA pixels, and no data.
+// The PNG signature, an IHDR chunk claiming 16000x16000 RGBA pixels, and an empty IDAT chunk: no
+// data. Newer stb_image (Debian 13's) reads a header up to the first IDAT, looking for tRNS,
+// so without one the file would be malformed rather than too large.
 Bytes oversizedPng() {
     Bytes b = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A, 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
     for (std::uint32_t v : {16000u, 16000u})
         for (int s = 24; s >= 0; s -= 8) b.push_back(static_cast<std::uint8_t>(v >> s));
-    for (std::uint8_t v : {8, 6, 0, 0, 0, 0, 0, 0, 0}) b.push_back(v);  // depth, RGBA, ..., CRC
+    for (std::uint8_t v : {8, 6, 0, 0, 0, 0, 0, 0, 0}) b.push_back(v);         // depth, RGBA, ..., CRC
+    const std::uint8_t idat[] = {0, 0, 0, 0, 'I', 'D', 'A', 'T', 0, 0, 0, 0};  // length 0, CRC
+    b.insert(b.end(), idat, idat + sizeof idat);
     return b;
 }
 
