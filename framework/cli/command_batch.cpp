@@ -115,18 +115,7 @@ int runBatch(const BatchArgs& args) {
 }
 
 int runBatchWorker(const BatchWorkerArgs& args) {
-    batch::WorkerTask task;
-    task.mode = args.mode;
-    task.labs_root = args.labs_root;
-    task.lab = args.lab;
-    task.backend = args.backend;
-    task.submission = args.submission;
-    task.out_dir = args.out_dir;
-    task.goldens_root = args.goldens_root;
-    task.reference_root = args.reference_root;
-    task.timeout_s = args.timeout_s;
-    task.compile_timeout_s = args.compile_timeout_s;
-    task.memory = args.memory;
+    batch::WorkerTask task = args;
     task.tool_version = SHADERLAB_VERSION;
     std::vector<std::string> errors;
     const int code = batch::runWorkerTask(task, &errors);

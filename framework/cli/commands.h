@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "shaderlab/batch/workers.h"
 #include "shaderlab/render/isolated_render.h"
 
 namespace shaderlab::cli {
@@ -150,15 +151,9 @@ struct BatchArgs {
 };
 int runBatch(const BatchArgs& args);
 
-// The worker the batch starts for one unit of work (not for people: hidden from --help).
-struct BatchWorkerArgs {
-    std::string mode;  // grade | reference
-    std::string labs_root, lab, backend = "auto";
-    std::string submission, out_dir, goldens_root, reference_root;
-    double timeout_s = 60.0;
-    double compile_timeout_s = 30.0;
-    std::string memory = "2G";
-};
+// The worker the batch starts for one unit of work (not for people: hidden from --help): its
+// options are the task itself.
+using BatchWorkerArgs = batch::WorkerTask;
 int runBatchWorker(const BatchWorkerArgs& args);
 
 // `shaderlab merge`: the summaries (and report folders) of several results folders in one.

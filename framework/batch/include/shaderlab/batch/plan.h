@@ -31,7 +31,7 @@ struct BatchSettings {
     std::string exe;           // the program the workers run: `<exe> batch-worker ...`
     std::string labs_root;
     std::vector<std::string> all_lab_ids;  // every lab of labs_root (what a submission's root holds)
-    std::string backend = "osmesa";
+    std::string backend = "auto";
     std::string renderer;              // what probeRenderer() saw (workers.h), in the reference key
     std::string reference_root;        // empty: grade against the labs' own goldens
     std::vector<std::string> formats;  // extra report formats: gradescope, junit

@@ -55,7 +55,7 @@ std::string selfExe();
 // One job, as `shaderlab batch-worker` is given it.
 struct WorkerTask {
     std::string mode;  // grade | reference
-    std::string labs_root, lab, backend = "osmesa";
+    std::string labs_root, lab, backend = "auto";
     std::string submission, out_dir, goldens_root, reference_root;
     double timeout_s = 60.0;
     double compile_timeout_s = 30.0;
