@@ -38,8 +38,8 @@ bool studentLabFolder(const std::string& submission_arg, const std::string& labs
 
 int runView(const ViewArgs& args) {
 #if !SHADERLAB_HAVE_VIEWER
-    std::cerr << "shaderlab: this shaderlab is a grader-only build, without the window (GLFW and Dear ImGui "
-                 "were not found when it was built); `shaderlab watch "
+    std::cerr << "shaderlab: this shaderlab is a grader-only build, without the window (built with "
+                 "SHADERLAB_GRADER_ONLY, or without GLFW or Dear ImGui); `shaderlab watch "
               << args.lab << "` checks your work on every save in the terminal\n";
     return 2;
 #else
