@@ -275,7 +275,7 @@ bool readChildResult(int fd, IsolatedRender* out) {
         SceneRender scene;
         scene.scene = text(s, "scene", 300);
         scene.render_ms = s.value("render_ms", 0.0);
-        scene.error = s.value("error", "");
+        scene.error = text(s, "error", 2000, true);
         for (const json& p : s.value("passes", json::array())) {
             PassImage img;
             img.pass = text(p, "pass", 300);
