@@ -1,4 +1,5 @@
-// `shaderlab view` (the window, framework/viewer/) and `shaderlab watch` (check on every save). A
+// `shaderlab view` (the window, framework/viewer/), `shaderlab serve` (the page, framework/serve/)
+// and `shaderlab watch` (check on every save). A
 // grader-only build (SHADERLAB_GRADER_ONLY) has no window: `view` then says so and what to use.
 #include <chrono>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include "commands.h"
 #include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/live/file_watch.h"
+#include "shaderlab/serve/serve.h"
 #if SHADERLAB_HAVE_VIEWER
 #include "shaderlab/viewer/viewer.h"
 #endif
@@ -86,6 +88,36 @@ int runView(const ViewArgs& args) {
     options.screenshot_window = args.screenshot_window;
     return viewer::runViewer(options);
 #endif
+}
+
+int runServe(const ServeArgs& args) {
+    std::string labs_root;
+    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
+    const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / args.lab).string());
+    if (!parsed.ok) {
+        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
+        return 2;
+    }
+    serve::ServeOptions options;
+    serve::WorkbenchOptions& w = options.workbench;
+    w.spec = parsed.spec;
+    w.labs_root = fs::absolute(labs_root).lexically_normal().string();
+    if (!studentLabFolder(args.submission, labs_root, args.lab, &w.submission_root)) return 2;
+    w.submission_root = fs::absolute(w.submission_root).lexically_normal().string();
+    if (!args.no_reference) {
+        const std::string root = args.reference_root.empty()
+                                     ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
+                                     : args.reference_root;
+        std::error_code ec;
+        if (fs::is_directory(fs::path(root) / args.lab, ec))
+            w.reference_root = fs::absolute(root).lexically_normal().string();
+    }
+    w.backend = chooseBackend(args.common.backend);
+    w.view_timeout_s = args.timeout_s;
+    w.grade_limits = isolationLimits(args.limits);
+    options.host = args.host;
+    options.port = args.port;
+    return serve::runServe(options);
 }
 
 int runWatch(const WatchArgs& args) {

@@ -92,6 +92,20 @@ struct ViewArgs {
 };
 int runView(const ViewArgs& args);
 
+// `shaderlab serve`: the browser workbench (framework/serve/).
+struct ServeArgs {
+    CommonOptions common;
+    std::string lab;
+    std::string submission;      // empty: <course>/work, as `check`
+    std::string reference_root;  // empty: reference_solutions beside labs/ when it has the lab
+    bool no_reference = false;
+    std::string host = "127.0.0.1";
+    int port = 8420;
+    double timeout_s = 5.0;              // one scene's render for the picture
+    LimitArgs limits{10.0, 30.0, 2048};  // the grade, as `check`
+};
+int runServe(const ServeArgs& args);
+
 // `shaderlab watch`: runCheck() on every settled change of the lab's folder.
 struct WatchArgs {
     CheckArgs check;

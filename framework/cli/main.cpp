@@ -114,6 +114,31 @@ CLI::App* addView(CLI::App& app, ViewArgs* args) {
     return cmd;
 }
 
+CLI::App* addServe(CLI::App& app, ServeArgs* args) {
+    CLI::App* cmd = app.add_subcommand(
+        "serve", "a page in your browser on one lab of your work: pictures, verdict and goals, on every save");
+    cmd->add_option("lab", args->lab, "lab id, e.g. 01-phong")->required();
+    cmd->add_option("--submission", args->submission,
+                    "folder mirroring labs/ (default: work/ beside labs/; reference_solutions works too)");
+    cmd->add_option("--port", args->port, "port to listen on (0: any free port)")
+        ->check(CLI::Range(0, 65535))
+        ->capture_default_str();
+    cmd->add_option("--host", args->host,
+                    "address to listen on (default 127.0.0.1, this machine only; anything else is reachable "
+                    "from other machines, and serve says so)")
+        ->capture_default_str();
+    cmd->add_option("--reference", args->reference_root,
+                    "reference solutions folder (default: reference_solutions beside labs/)");
+    cmd->add_flag("--no-reference", args->no_reference, "compare with the stored golden images");
+    cmd->add_option("--view-timeout", args->timeout_s, "seconds one scene may take to render for the picture")
+        ->check(CLI::Range(0.1, 600.0))
+        ->capture_default_str();
+    addLimits(cmd, &args->limits, "seconds the lab may take to draw its scenes when graded (as `check`)");
+    cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
+    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    return cmd;
+}
+
 CLI::App* addWatch(CLI::App& app, WatchArgs* args) {
     CLI::App* cmd = app.add_subcommand(
         "watch", "check one lab of your work again on every save, without a window (like `check`)");
@@ -290,6 +315,8 @@ int main(int argc, char** argv) {
     CLI::App* check_cmd = addCheck(app, &check);
     ViewArgs view;
     CLI::App* view_cmd = addView(app, &view);
+    ServeArgs serve;
+    CLI::App* serve_cmd = addServe(app, &serve);
     WatchArgs watch;
     CLI::App* watch_cmd = addWatch(app, &watch);
     CompareArgs compare;
@@ -325,6 +352,7 @@ int main(int argc, char** argv) {
     if (start_cmd->parsed()) return runStart(start);
     if (compare_cmd->parsed()) return runCompare(compare);
     if (view_cmd->parsed()) return runView(view);
+    if (serve_cmd->parsed()) return runServe(serve);
     if (watch_cmd->parsed()) return runWatch(watch);
     if (goldens_cmd->parsed()) return runGoldens(goldens);
     if (corpus_cmd->parsed()) return runCorpus(corpus);

@@ -21,6 +21,7 @@ namespace {
 // the reason added to `errors`).
 std::string writeImage(const grader::Image& img, const fs::path& out_dir, const fs::path& rel,
                        std::vector<std::string>* errors) {
+    if (out_dir.empty()) return {};  // a grade without pictures (GradeOptions::out_dir)
     std::string err;
     // Folder by folder, refusing a link planted on the way (atomic_file.h); writePng refuses one
     // at the file's own name.
@@ -37,6 +38,7 @@ std::string writeImage(const grader::Image& img, const fs::path& out_dir, const 
 // to writing `img` when the copy fails.
 std::string copyOrWriteImage(const std::string& golden, const grader::Image& img, const fs::path& out_dir,
                              const fs::path& rel, std::vector<std::string>* errors) {
+    if (out_dir.empty()) return {};
     if (!golden.empty()) {
         // The same care as writeImage: no folder or file of the output written through a link.
         std::ifstream in(golden, std::ios::binary);
@@ -73,6 +75,8 @@ ShownPictures writeReportPictures(const PicturePlace& place, const GradedImage& 
     }
     // NaN and Inf show in magenta (a PNG would hold them as black or white).
     grader::Image picture = grader::markNonFinite(shown_mine);
+    // A grade without pictures (the workbench's verdict) needs only what was shown, for the hints.
+    if (out_dir.empty()) return {std::move(picture), std::move(shown_theirs)};
     rp->student_image = writeImage(picture, out_dir, base / ("student" + suffix + ".png"), errors);
     const bool golden_png = place.reference_source == "goldens" && !g.hdr;
     rp->reference_image = copyOrWriteImage(

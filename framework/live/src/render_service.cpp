@@ -14,6 +14,8 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "shaderlab/grading/grading.h"
+
 namespace shaderlab::viewer {
 
 using json = nlohmann::json;
@@ -137,6 +139,24 @@ bool readAnswer(int fd, IsolatedRender* out) {
     return true;
 }
 
+bool sendText(int fd, const std::string& text) {
+    const std::uint64_t n = text.size();
+    return writeAll(fd, &n, sizeof n) && writeAll(fd, text.data(), text.size());
+}
+
+// The lab graded as `check` grades it, as report.json's text.
+std::string gradeAnswer(const LabSpec& spec, Backend backend, const json& req) {
+    GradeOptions options;
+    options.backend = backend;
+    options.labs_root = req.value("labs", "");
+    options.reference_root = req.value("reference", "");
+    options.labs = {spec.id};
+    options.limits.timeout_s = req.value("timeout", 10.0);
+    options.limits.compile_timeout_s = req.value("compile_timeout", 30.0);
+    options.limits.memory_bytes = req.value("memory", std::size_t(2048) << 20);
+    return grader::reportToJson(gradeSubmission(req.value("submission", ""), options));
+}
+
 [[noreturn]] void serverMain(const LabSpec& spec, Backend backend, int in_fd, int out_fd) {
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     std::string line;
@@ -151,6 +171,10 @@ bool readAnswer(int fd, IsolatedRender* out) {
             line.push_back(c);
         }
         const json req = json::parse(line, nullptr, false);
+        if (req.is_object() && req.value("kind", "") == "grade") {
+            if (!sendText(out_fd, gradeAnswer(spec, backend, req))) _exit(0);
+            continue;
+        }
         IsolatedRender result;
         if (req.is_discarded() || !req.is_object()) {
             result.status = IsolatedStatus::RenderError;
@@ -216,6 +240,30 @@ RenderService::~RenderService() {
         kill(pid_, SIGKILL);
         waitpid(pid_, nullptr, 0);
     }
+}
+
+bool RenderService::grade(const GradeRequest& request, grader::Report* out, std::string* error) {
+    const json req = {{"kind", "grade"},
+                      {"submission", request.submission_root},
+                      {"labs", request.labs_root},
+                      {"reference", request.reference_root},
+                      {"timeout", request.limits.timeout_s},
+                      {"compile_timeout", request.limits.compile_timeout_s},
+                      {"memory", request.limits.memory_bytes}};
+    const std::string line = req.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
+    std::uint64_t n = 0;
+    std::string text;
+    if (!writeAll(to_server_, line.data(), line.size()) || !readAll(from_server_, &n, sizeof n) ||
+        n > (64u << 20)) {
+        *error = "the render process stopped answering";
+        return false;
+    }
+    text.resize(n);
+    if (!readAll(from_server_, text.data(), n)) {
+        *error = "the render process stopped answering";
+        return false;
+    }
+    return grader::reportFromJson(text, out, error);
 }
 
 void RenderService::shutdown() {

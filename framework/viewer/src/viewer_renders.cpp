@@ -8,6 +8,7 @@
 
 #include "grader/reports/report.h"
 #include "shaderlab/grading/grading.h"
+#include "shaderlab/live/render_outcome.h"
 #include "viewer_window.h"
 
 namespace fs = std::filesystem;
@@ -47,19 +48,6 @@ std::shared_ptr<const void> Viewer::referenceOwner() const {
     if (!opt_.reference_root.empty()) return reference_;
     const auto it = goldens_.find(student_scene_);
     return it == goldens_.end() ? nullptr : it->second;
-}
-
-std::string Viewer::timeoutCulprit(const IsolatedRender& r) const {
-    std::istringstream in(r.last_event);
-    std::string kind, a, b;
-    in >> kind >> a >> b;
-    if (kind == "compile") return a + " / " + b;
-    if (kind == "pass") {
-        if (const PassSpec* p = spec_.findPass(b))
-            return p->program.fragment + " (pass '" + b + "', with " + p->program.vertex + ")";
-        return "pass '" + b + "'";
-    }
-    return "your shaders";
 }
 
 void Viewer::requestStudent(std::int64_t save_ns) {
@@ -122,27 +110,9 @@ void Viewer::onStudent(const Finished& f) {
             std::printf("view: %s\n", line);
         }
     } else {
-        std::string title, text;
-        switch (r.status) {
-            case IsolatedStatus::CompileError:
-            case IsolatedStatus::LinkError:
-                title = r.status == IsolatedStatus::CompileError ? "Your shader does not compile"
-                                                                 : "Your shaders do not link";
-                break;
-            case IsolatedStatus::Timeout:
-                title = "Timed out: " + timeoutCulprit(r);
-                break;
-            case IsolatedStatus::Missing:
-                title = "A file is missing";
-                break;
-            default:
-                title = "The render failed (" + std::string(isolatedStatusName(r.status)) + ")";
-        }
-        for (const Diagnostic& d : r.render.diagnostics)
-            if (d.severity == "error" || r.status == IsolatedStatus::CompileError ||
-                r.status == IsolatedStatus::LinkError)
-                text += grader::formatDiagnostic(toReportDiagnostic(d)) + "\n";
-        if (text.empty() || r.status == IsolatedStatus::Timeout) text = r.message + "\n" + text;
+        const RenderFailure failure = describeFailure(spec_, r);
+        const std::string& title = failure.title;
+        const std::string& text = failure.text;
         error_title_ = title + (student_ ? " - the last good picture is shown" : "");
         error_text_ = text;
         const std::string printed = title + "\n" + text;

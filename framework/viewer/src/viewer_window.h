@@ -93,7 +93,6 @@ class Viewer {
     const std::vector<PassImage>* studentPasses() const;
     const std::vector<PassImage>* referencePasses() const;
     std::shared_ptr<const void> referenceOwner() const;
-    std::string timeoutCulprit(const IsolatedRender& r) const;
     // viewer_shown.cpp
     void refreshShown();
     void showInput(const PassImage& out, const PassSpec& pass, const std::vector<PassImage>* mine,

@@ -32,15 +32,23 @@ void pngError(png_structp png, png_const_charp message) {
 
 void pngWarning(png_structp, png_const_charp) {}
 
+void pngWriteBytes(png_structp png, png_bytep data, png_size_t n) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));
+    out->insert(out->end(), data, data + n);
+}
+
+void pngFlush(png_structp) {}
+
 }  // namespace
 
 // libpng with a fast zlib level and the "Sub" row filter: a report writes hundreds of small
 // pictures, and stb_image_write's encoder spent more time on them than grading did (perf: 37 %
 // of a lab's grade in stbi_zlib_compress). The files are a little larger, the pixels the same.
-bool writePng(const Image& image, const std::string& path, std::string* error) {
+bool encodePng(const Image& image, std::vector<std::uint8_t>* out, std::string* error) {
+    out->clear();
     if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
         image.pixels.size() != static_cast<std::size_t>(image.width) * image.height * image.channels) {
-        if (error) *error = path + ": image has inconsistent size, not written";
+        if (error) *error = "image has inconsistent size, not encoded";
         return false;
     }
     std::vector<std::uint8_t> bytes(image.pixels.size());
@@ -50,28 +58,18 @@ bool writePng(const Image& image, const std::string& path, std::string* error) {
         v = std::clamp(v, 0.0f, 1.0f);
         bytes[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
     }
-    // Beside the final name, then renamed: a killed grader leaves the old picture or the new one,
-    // never half of one, and a link planted at the name is refused (atomic_file.h).
-    AtomicFile output;
-    std::string open_error;
-    if (!output.open(path, &open_error)) {
-        if (error) *error = open_error + ": cannot write PNG";
-        return false;
-    }
-    std::FILE* file = output.stream();
     PngWriteState state;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, pngError, pngWarning);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(state.jump)) {
         png_destroy_write_struct(&png, &info);
-        if (error)
-            *error = path + ": cannot write PNG (" +
-                     (state.message.empty() ? "out of memory" : state.message) + ")";
+        if (error) *error = "cannot encode PNG (" + (state.message.empty() ? "out of memory" : state.message) + ")";
+        out->clear();
         return false;
     }
     static const int kColorTypes[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                        PNG_COLOR_TYPE_RGB_ALPHA};
-    png_init_io(png, file);
+    png_set_write_fn(png, out, pngWriteBytes, pngFlush);
     png_set_compression_level(png, 3);
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
@@ -83,11 +81,30 @@ bool writePng(const Image& image, const std::string& path, std::string* error) {
         png_write_row(png, bytes.data() + stride * static_cast<std::size_t>(y));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    // Not fsync'ed: a report writes hundreds of pictures, and the rename alone keeps them whole
-    // when the process dies; the reports that name them are synced.
+    return true;
+}
+
+bool writePng(const Image& image, const std::string& path, std::string* error) {
+    std::vector<std::uint8_t> encoded;
+    std::string encode_error;
+    if (!encodePng(image, &encoded, &encode_error)) {
+        if (error) *error = path + ": " + encode_error;
+        return false;
+    }
+    // Beside the final name, then renamed: a killed grader leaves the old picture or the new one,
+    // never half of one, and a link planted at the name is refused (atomic_file.h). Not fsync'ed:
+    // a report writes hundreds of pictures, and the rename alone keeps them whole when the
+    // process dies; the reports that name them are synced.
+    AtomicFile output;
+    std::string open_error;
+    if (!output.open(path, &open_error)) {
+        if (error) *error = open_error + ": cannot write PNG";
+        return false;
+    }
     std::string commit_error;
-    if (!output.commit(&commit_error, false)) {
-        if (error) *error = commit_error + ": cannot write PNG";
+    if (std::fwrite(encoded.data(), 1, encoded.size(), output.stream()) != encoded.size() ||
+        !output.commit(&commit_error, false)) {
+        if (error) *error = (commit_error.empty() ? path : commit_error) + ": cannot write PNG";
         return false;
     }
     return true;

@@ -22,7 +22,7 @@ struct GradeOptions {
     std::string labs_root;          // where lab.json files live
     std::string reference_root;     // folder mirroring labs/ with reference shaders; empty or absent: goldens
     std::vector<std::string> labs;  // empty: every lab under labs_root
-    std::string out_dir;            // images go to out_dir/<lab>/<scene>/
+    std::string out_dir;            // images go to out_dir/<lab>/<scene>/; empty: no pictures written
     IsolationLimits limits;
     // Told, as the student's render goes, what it is doing (RenderOptions::progress events,
     // with the lab id). May be empty.

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "grader/reports/report.h"
 #include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/render/isolated_render.h"
 #include "shaderlab/scene/camera.h"
@@ -23,6 +24,15 @@ struct RenderRequest {
     std::string scene;             // one scene of the lab
     CameraOrbit orbit;
     double timeout_s = 5.0;
+};
+
+// A whole lab graded as `check` grades it (gradeSubmission with the same options), for the
+// verdict, goals and known-mistake hints of a workbench; no pictures are written.
+struct GradeRequest {
+    std::string submission_root;  // holds <lab id>/
+    std::string labs_root;
+    std::string reference_root;  // empty: the stored goldens
+    IsolationLimits limits;
 };
 
 class RenderService {
@@ -38,6 +48,10 @@ class RenderService {
     // as long as the render takes (at most the request's timeout, plus reading the images);
     // call it from one thread at a time. A server that has died answers "crashed".
     IsolatedRender render(const RenderRequest& request);
+
+    // Grades the lab of start()'s spec (see GradeRequest) into `out` (one lab). Blocks like
+    // render(); false, with the reason, when the server stopped answering.
+    bool grade(const GradeRequest& request, grader::Report* out, std::string* error);
 
     // Stops the server now (a render in flight answers "crashed"); for quitting the window.
     void shutdown();

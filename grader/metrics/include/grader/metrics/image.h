@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,8 @@ constexpr std::size_t kMaxImagePixels = std::size_t{4096} * 4096;
 
 // Writes 8-bit PNG: each channel clamped to [0,1], NaN written as 0, scaled by 255 and rounded.
 bool writePng(const Image& image, const std::string& path, std::string* error);
+// The same PNG, in memory (for pictures served over HTTP).
+bool encodePng(const Image& image, std::vector<std::uint8_t>* out, std::string* error);
 // Reads an 8-bit or 16-bit PNG into [0,1] floats, keeping its channel count (grey+alpha becomes 4).
 bool readPng(const std::string& path, Image* image, std::string* error);
 // Radiance RGBE (.hdr), for float images with values above 1: RGB kept to 8-bit mantissas with a
