@@ -6,6 +6,10 @@
 #   docker run --rm -it -v "$PWD":/course shaderlab shaderlab check 01-phong   # in the course's folder
 #   docker run --rm -v "$PWD":/course shaderlab shaderlab grade work --out out/grade
 #   docker run --rm -it -v "$PWD":/course shaderlab                            # a shell
+#   docker run --rm -it -p 127.0.0.1:8420:8420 -v "$PWD":/course shaderlab \
+#       shaderlab serve 01-phong --host 0.0.0.0    # the workbench: open http://127.0.0.1:8420/
+# (inside the container serve must listen on every address to be reached through -p; the -p above
+# publishes it on the host's loopback only, so nothing outside the laptop reaches it.)
 #
 # The course (the folder holding labs/) is found from the working folder upward, like git finds
 # its repository; /course is the working folder. docs/students.md walks through it.
@@ -21,4 +25,5 @@ RUN bash /opt/shaderlab/scripts/setup.sh --grader-only -DCMAKE_BUILD_TYPE=Releas
 USER student
 WORKDIR /course
 VOLUME /course
+EXPOSE 8420
 CMD ["bash"]

@@ -20,6 +20,7 @@ packages=(
   libglm-dev nlohmann-json3-dev libtinygltf-dev libstb-dev libcli11-dev python3-glad libvalijson-dev libpng-dev
   libdraco-dev libmeshoptimizer-dev  # compressed glTF meshes (framework/scene/src/gltf_accessors.cpp)
   libarchive-dev libxxhash-dev       # shaderlab batch: submitted zips, content hashes
+  libcpp-httplib-dev                 # shaderlab serve: the browser workbench's HTTP server
 )
 # The tests, the benchmarks and the student viewer.
 if ((grader_only == 0)); then
@@ -27,6 +28,7 @@ if ((grader_only == 0)); then
     libgtest-dev libgmock-dev libbenchmark-dev clang-format
     universal-ctags  # scripts/house-check.sh: function lengths (test house_check)
     chromium tidy    # tests/report_page_test.cpp renders and validates report.html (skipped without them)
+    python3 python3-websocket  # tests/serve/: the workbench page driven in headless Chromium
     gnuplot-nox      # scripts/bench.sh draws the plots of docs/performance.md
     libglfw3-dev libimgui-dev  # the student viewer (`shaderlab view`)
     xvfb xauth       # tests/viewer_test.cpp opens the viewer on a virtual display (skipped without)

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Takes the screenshots of docs/students.md: a student's course (labs without the reference
 # solutions, as students get it) in a scratch folder, `shaderlab view` on an Xvfb display of its
-# own, the window saved at each step of the walk-through into docs/images/.
-# Usage: bash scripts/student-docs-screenshots.sh   (after building; needs Xvfb)
+# own, the window saved at each step of the walk-through into docs/images/; then the same course
+# in the browser workbench (`shaderlab serve`, headless Chromium: scripts/serve-screenshots.py).
+# Usage: bash scripts/student-docs-screenshots.sh   (after building; needs Xvfb, chromium and
+# python3-websocket, which scripts/setup.sh installs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo=$(pwd)
@@ -48,3 +50,6 @@ cp "$repo/reference_solutions/01-phong/phong.frag" work/01-phong/phong.frag
 "$sl" view 06-bloom --scene teapot_white --image bright.color --mode split --frames 3 \
   --screenshot-window "$images/view-passes.png" >/dev/null
 echo "screenshots written to $images"
+# 6. The browser workbench on a fresh copy of the starter code.
+"$sl" start 01-phong --force >/dev/null
+/usr/bin/python3 "$repo/scripts/serve-screenshots.py" "$sl" "$course" "$repo" "$images"
