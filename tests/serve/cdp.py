@@ -7,6 +7,7 @@ import re
 import shutil
 import subprocess
 import tempfile
+import threading
 import time
 import urllib.request
 
@@ -106,6 +107,8 @@ class Browser:
         if not self.port:
             self.close()
             raise RuntimeError("chromium did not start its DevTools endpoint")
+        # Chromium keeps logging to stderr: drain it, or a full pipe would block the browser.
+        threading.Thread(target=lambda: [None for _ in self.proc.stderr], daemon=True).start()
 
     def new_page(self, url="about:blank"):
         req = urllib.request.Request("http://127.0.0.1:%d/json/new?%s" % (self.port, url), method="PUT")
@@ -120,4 +123,6 @@ class Browser:
                 self.proc.wait(10)
             except subprocess.TimeoutExpired:
                 self.proc.kill()
+                self.proc.wait()
+        self.proc.stderr.close()
         shutil.rmtree(self.profile, ignore_errors=True)

@@ -11,13 +11,13 @@ server keep answering; two tabs follow the same saves; the pixel inspector and t
 Run: /usr/bin/python3 tests/serve/serve_browser_test.py --shaderlab build/framework/shaderlab --source .
 Exits 77 (CTest's skip) where chromium or python3-websocket is missing."""
 import base64
-import json
 import os
 import shutil
 import struct
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import unittest
 import zlib
@@ -159,7 +159,7 @@ class PngDecoderTest(unittest.TestCase):
             self.assertEqual(rows, want, "channels %d" % channels)
 
 
-# ---- the page ----
+# ---- the server and the page ----
 
 JS_PAGE_READY = "!!(window.workbench && document.getElementById('picture'))"
 
@@ -200,11 +200,16 @@ class BrowserTest(unittest.TestCase):
     def setUpClass(cls):
         import cdp
         cls.browser = cdp.Browser()
+        # Chromium's messages after start-up, read so that a full pipe never stalls it.
+        cls.drain = threading.Thread(target=lambda: [None for _ in cls.browser.proc.stderr], daemon=True)
+        cls.drain.start()
 
     @classmethod
     def tearDownClass(cls):
         if cls.browser:
             cls.browser.close()
+            cls.drain.join(10)
+            cls.browser.proc.stderr.close()
 
     def setUp(self):
         self.pages = []
@@ -240,9 +245,6 @@ class BrowserTest(unittest.TestCase):
             if time.time() > deadline:
                 self.fail("the page did not show picture %s (page: %r)" % (p and p["seq"], got if p else None))
             time.sleep(0.05)
-
-    def fail_with_output(self, s, message):
-        self.fail(message + "\nserve said:\n" + "".join(s.output[-30:]))
 
     # 1
     def test_1_picture_equals_headless_render(self):
@@ -327,7 +329,6 @@ class BrowserTest(unittest.TestCase):
             path = os.path.join(s.lab_dir, "phong.frag")
             with open(path, "w"):
                 pass
-            time.sleep(0.01)
             with open(path, "w") as f:
                 f.write(replace_output(good, "o_color = vec4(0.8, 0.2, 0.6, 1.0);"))
             page.wait_for("window.workbench.shownSeq > %d" % seq1, 30, "a new picture after truncate-then-write")
@@ -373,8 +374,8 @@ class BrowserTest(unittest.TestCase):
             shown = page.eval("document.getElementById('error').innerText")
             where = "phong.frag:%d" % d["line"]
             self.assertIn(where, shown, shown)
-            source_line = lines[d["line"] - 1] if d["line"] != n else broken[n - 1]
-            self.assertIn("%d | %s" % (d["line"], source_line.strip()), shown, shown)
+            # The source line as saved, under its number, then a caret line.
+            self.assertIn("%d | %s" % (d["line"], broken[d["line"] - 1]), shown, shown)
             pres = page.eval("[...document.querySelectorAll('#error-diagnostics pre')].map(e => e.textContent)")
             self.assertTrue(any(l.strip().startswith("|") and l.rstrip().endswith("^")
                                 for pre in pres for l in pre.split("\n")), "no caret line in %r" % pres)
@@ -410,9 +411,8 @@ class BrowserTest(unittest.TestCase):
             # viewer's test hangs).
             s.save("phong.frag", replace_output(
                 good, "float k = 0.0; while (k >= 0.0) { k += u_ambient + 1.0; } o_color = vec4(color * k, 1.0);"))
-            st = s.wait_state(lambda x: x["busy"].startswith("rendering your shaders") and x["busy_s"] > 0.3,
-                              20, "the hanging render under way")
-            started = time.time()
+            st = s.wait_state(lambda x: x["busy"].startswith("rendering your shaders"), 20,
+                              "the hanging render under way")
 
             # While it hangs: the state answers quickly from the page, and the buttons work.
             ms = page.eval("(async () => { const t = performance.now();"
@@ -428,7 +428,6 @@ class BrowserTest(unittest.TestCase):
             self.assertLess(time.time() - t0, 1.0)
             self.assertTrue(s.state()["busy"].startswith("rendering your shaders"),
                             "the checks above did not run during the hang")
-            self.assertLess(time.time() - started, 2.0)
             page.eval("document.getElementById('mode-student').click(); true")
 
             title = page.wait_for("(() => { const t = document.getElementById('error-title').textContent;"
@@ -472,7 +471,7 @@ class BrowserTest(unittest.TestCase):
             self.assertTrue(p["images"][p["final_image"]]["has_reference"])
             page.eval("(() => { const c = document.getElementById('picture'); const r = c.getBoundingClientRect();"
                       " c.dispatchEvent(new MouseEvent('mousemove', {bubbles: true,"
-                      " clientX: r.left + r.width / 2, clientY: r.top + r.height / 2})); return true; })()")
+                      " clientX: Math.ceil(r.left + r.width / 2 + 0.5), clientY: Math.ceil(r.top + r.height / 2 + 0.5)})); return true; })()")
             text = page.wait_for("(() => { const t = document.getElementById('inspector').textContent;"
                                  " return t.includes('yours') ? t : ''; })()", 10, "the inspector")
             img = p["images"][p["final_image"]]

@@ -71,6 +71,8 @@ class Served:
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait()
+        self.reader.join(10)
+        self.proc.stdout.close()
         shutil.rmtree(self.tmp, ignore_errors=True)
         return False
 
