@@ -24,11 +24,49 @@ def fetch_size(url):
         return len(r.read())
 
 
+def viewer_latencies(args, lab, saves):
+    """The window's own figure for the same saves ("on screen N ms after the save", printed by
+    `shaderlab view`), under Xvfb, for comparison."""
+    import re
+    import shutil
+    import subprocess
+    import tempfile
+    tmp = tempfile.mkdtemp(prefix="shaderlab-view-bench-")
+    root = os.path.join(tmp, "work")
+    shutil.copytree(os.path.join(args.source, "reference_solutions", lab), os.path.join(root, lab))
+    spec = json.load(open(os.path.join(args.source, "labs", lab, "lab.json")))
+    frag = [f for f in spec["student_files"] if f.endswith(".frag")][-1]
+    path = os.path.join(root, lab, frag)
+    original = open(path).read()
+    proc = subprocess.Popen(["xvfb-run", "-a", args.shaderlab, "view", lab, "--submission", root,
+                             "--labs", os.path.join(args.source, "labs"),
+                             "--exit-after-reloads", str(saves)],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    latencies = []
+    started = False
+    for line in proc.stdout:
+        if not started and "rendered in" in line:
+            started = True
+        m = re.search(r"on screen (\d+) ms after the save", line)
+        if m:
+            latencies.append(float(m.group(1)))
+        if started and len(latencies) < saves and ("rendered in" in line):
+            time.sleep(1.5)  # as the page's saves: after the previous picture has settled
+            tmp_path = path + ".tmp-save"
+            with open(tmp_path, "w") as f:
+                f.write(original + "\n// save %d\n" % len(latencies))
+            os.replace(tmp_path, path)
+    proc.wait()
+    shutil.rmtree(tmp, ignore_errors=True)
+    return latencies
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("shaderlab")
     ap.add_argument("labs", nargs="*", default=["01-phong", "06-bloom"])
     ap.add_argument("--saves", type=int, default=20)
+    ap.add_argument("--viewer", action="store_true", help="also measure `shaderlab view` (under Xvfb)")
     a = ap.parse_args()
     args = argparse.Namespace(shaderlab=os.path.abspath(a.shaderlab), source=os.path.join(here, ".."))
     browser = cdp.Browser()
@@ -73,6 +111,17 @@ def main():
     for lab, startup, first, med, p95, w in rows:
         print("| %s | %.0f ms | %.0f ms | %.0f ms | %.0f ms | %.1f KB | %.1f KB | %.1f KB |" % (
             lab, startup * 1000, first * 1000, med, p95, w["page"] / 1024, w["state"] / 1024, w["picture"] / 1024))
+    if a.viewer:
+        print()
+        print("| lab | the window (`view`): save to picture on screen, median | p95 |")
+        print("|---|---|---|")
+        for lab in a.labs:
+            v = sorted(viewer_latencies(args, lab, a.saves))
+            if not v:
+                print("| %s | (no figure: is Xvfb installed?) | |" % lab)
+                continue
+            p95 = v[min(len(v) - 1, int(round(0.95 * (len(v) - 1))))]
+            print("| %s | %.0f ms | %.0f ms |" % (lab, statistics.median(v), p95))
 
 
 if __name__ == "__main__":

@@ -48,6 +48,7 @@ async function refresh() {
     if (!r.ok) throw new Error('state ' + r.status);
     const s = await r.json();
     $('connection').classList.add('hidden');
+    if (ui.state && s.version < ui.state.version) return;  // an event brought a newer one
     ui.state = s;
     window.workbench.stateVersion = s.version;
     render();
@@ -61,8 +62,15 @@ async function refresh() {
 
 function listen() {
   const events = new EventSource('/events');
+  // Each event carries the whole state: no second request on the way to the picture.
   events.addEventListener('state', (e) => {
-    if (!ui.state || Number(e.data) !== ui.state.version) refresh();
+    let s;
+    try { s = JSON.parse(e.data); } catch (err) { refresh(); return; }
+    if (ui.state && s.version <= ui.state.version) return;
+    $('connection').classList.add('hidden');
+    ui.state = s;
+    window.workbench.stateVersion = s.version;
+    render();
   });
   events.onerror = () => { $('connection').classList.remove('hidden'); };
   events.onopen = () => { $('connection').classList.add('hidden'); refresh(); };

@@ -137,8 +137,9 @@ void Server::handle(const httplib::Request& req, httplib::Response& res) {
     }
 }
 
-// Server-Sent Events (HTML Living Standard, "Server-sent events"): one "state" event with the
-// state's version whenever it changes, and a comment every 15 s so that proxies keep it open.
+// Server-Sent Events (HTML Living Standard, "Server-sent events"): one "state" event carrying the
+// whole state (one line of JSON) whenever it changes, so a page needs no second request to follow,
+// and a comment every 15 s so that proxies keep the stream open.
 void Server::events(const httplib::Request& req, httplib::Response& res) {
     {
         std::lock_guard<std::mutex> lock(streams_m);
@@ -155,9 +156,12 @@ void Server::events(const httplib::Request& req, httplib::Response& res) {
             if (stopping) return false;
             const std::uint64_t v = *seen == 0 ? bench.version() : bench.waitForChange(*seen, std::chrono::seconds(15));
             if (stopping) return false;
-            const std::string msg =
-                v != *seen ? "event: state\ndata: " + std::to_string(v) + "\n\n" : std::string(": still here\n\n");
-            *seen = v;
+            std::string msg = ": still here\n\n";
+            if (v != *seen) {
+                const json state = bench.state();
+                msg = "event: state\ndata: " + state.dump(-1, ' ', false, json::error_handler_t::replace) + "\n\n";
+                *seen = state.value("version", v);
+            }
             return sink.write(msg.data(), msg.size());
         },
         [this, client_port](bool) {

@@ -103,7 +103,7 @@ struct Workbench::Impl {
     std::map<std::string, std::shared_ptr<const std::vector<PassImage>>> goldens;  // by scene
     std::map<std::string, std::string> golden_errors;
     std::optional<RenderFailureInfo> failure;  // the last render that gave no picture
-    std::optional<grader::ReportLab> grade;
+    nlohmann::json grade;  // the lab's grade as report.json has it (null until the first)
     std::uint64_t grade_generation = 0;
     std::string grade_error;
     std::map<int, std::shared_ptr<const grader::Image>> files;  // input files read, by index

@@ -170,19 +170,11 @@ json Workbench::state() const {
                         {"generation", w.failure->generation},
                         {"diagnostics", w.failure->diagnostics}};
     }
-    if (w.grade || !w.grade_error.empty()) {
-        json g = {{"generation", w.grade_generation},
-                  {"pending", w.grade_generation != w.generation || w.want_grade},
-                  {"error", w.grade_error},
-                  {"lab", json()}};
-        if (w.grade) {
-            grader::Report report;
-            report.labs.push_back(*w.grade);
-            const json parsed = json::parse(grader::reportToJson(report), nullptr, false);
-            if (parsed.is_object() && parsed.contains("labs") && !parsed["labs"].empty()) g["lab"] = parsed["labs"][0];
-        }
-        out["grade"] = std::move(g);
-    }
+    if (!w.grade.is_null() || !w.grade_error.empty())
+        out["grade"] = {{"generation", w.grade_generation},
+                        {"pending", w.grade_generation != w.generation || w.want_grade},
+                        {"error", w.grade_error},
+                        {"lab", w.grade}};
     return out;
 }
 

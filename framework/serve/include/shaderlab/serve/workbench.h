@@ -32,7 +32,7 @@ struct WorkbenchOptions {
     double view_timeout_s = 5.0;  // one scene's render for the picture
     IsolationLimits grade_limits{10.0, 30.0, std::size_t(2048) << 20};  // `check`'s
     bool grade = true;                                                 // grade the lab on every save
-    std::chrono::milliseconds poll{40};                                // the folder watch
+    std::chrono::milliseconds poll{20};                                // the folder watch
 };
 
 // What a picture request names: one image of a snapshot, in one form.
