@@ -40,6 +40,26 @@ int portOf(const sockaddr_storage& a) {
 
 }  // namespace
 
+bool widenListenQueue(int port) {
+    DIR* dir = opendir("/proc/self/fd");
+    if (!dir) return false;
+    bool done = false;
+    while (const dirent* e = readdir(dir)) {
+        if (e->d_name[0] < '0' || e->d_name[0] > '9') continue;
+        const int fd = std::atoi(e->d_name);
+        int listening = 0;
+        socklen_t len = sizeof listening;
+        sockaddr_storage local{};
+        socklen_t local_len = sizeof local;
+        if (fd == dirfd(dir) || getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &len) != 0 || !listening ||
+            getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_len) != 0 || portOf(local) != port)
+            continue;
+        done = listen(fd, SOMAXCONN) == 0 || done;
+    }
+    closedir(dir);
+    return done;
+}
+
 void ConnectionGuard::start(int server_port, const GuardLimits& limits) {
     port_ = server_port;
     limits_ = limits;

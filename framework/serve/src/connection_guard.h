@@ -31,6 +31,10 @@ struct GuardLimits {
     int busy_connections = 32;                            // "many"
 };
 
+// Calls listen() again, with the system's largest queue, on this process's socket listening on
+// `port`. False when there is none.
+bool widenListenQueue(int port);
+
 class ConnectionGuard {
   public:
     ConnectionGuard() = default;

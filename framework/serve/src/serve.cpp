@@ -3,8 +3,11 @@
 #include "shaderlab/serve/serve.h"
 
 #include <httplib.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <pthread.h>
 #include <signal.h>
+#include <sys/socket.h>
 
 #include <chrono>
 #include <condition_variable>
@@ -225,6 +228,16 @@ int runServe(const ServeOptions& options) {
     http.Options(".*", handler);
     http.Patch(".*", handler);
 
+    // cpp-httplib's own socket options add SO_REUSEPORT, with which a second `shaderlab serve` binds
+    // the same port and takes half the requests: SO_REUSEADDR only. TCP_USER_TIMEOUT (accepted
+    // sockets inherit it from the listening one) lets the kernel give up on a client that has taken
+    // nothing it was sent for 10 s, even after the server closed the socket with the rest queued.
+    http.set_socket_options([](socket_t sock) {
+        int yes = 1;
+        setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+        unsigned int stalled_ms = 10000;
+        setsockopt(sock, IPPROTO_TCP, TCP_USER_TIMEOUT, &stalled_ms, sizeof stalled_ms);
+    });
     const int port = options.port == 0 ? http.bind_to_any_port(options.host)
                                        : (http.bind_to_port(options.host, options.port) ? options.port : -1);
     if (port <= 0) {
@@ -234,6 +247,9 @@ int runServe(const ServeOptions& options) {
                      options.host.c_str(), options.port);
         return 2;
     }
+    // The library listens with a queue of 5: a burst of connections (a page's pictures, a flood)
+    // would lose some for a second. Linux resizes the queue of a socket already listening.
+    widenListenQueue(port);
     const std::string shown_host = options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host;
     std::printf("shaderlab serve: lab %s, your files in %s/%s\n", options.workbench.spec.id.c_str(),
                 options.workbench.submission_root.c_str(), options.workbench.spec.id.c_str());
