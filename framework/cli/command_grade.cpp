@@ -153,7 +153,11 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
     for (const grader::ReportGoal& g : lab.goals) {
         std::printf("  %s%-4s%s goal %-62s %5.2f / %.2f\n", g.met ? c.green : c.red, g.met ? "met" : "MISS",
                     c.reset, g.title.c_str(), g.met ? g.points : 0.0, g.points);
-        if (!g.met) {
+        if (!g.met && !g.not_met_because.empty()) {
+            std::printf("       not met because %s %s not met\n",
+                        grader::goalsNamed(lab, g.not_met_because).c_str(),
+                        g.not_met_because.size() > 1 ? "are" : "is");
+        } else if (!g.met) {
             std::string where;
             for (const std::string& f : g.failing) where += (where.empty() ? "" : ", ") + f;
             std::printf("       not met in %s\n", where.c_str());

@@ -356,10 +356,35 @@ void explainSceneFailures(const LabGrading& lab, grader::ReportLab* report) {
     }
 }
 
-// Goals: met when every check of theirs passed. A goal's points are shared among its
-// scenes for the per-scene figures, so scene scores add up to the lab's.
+// A goal that rests on others (depends_on) is not met while one of them is not, because of it,
+// whatever its own checks say. The dependencies form no circle (the lab's validator), so walking
+// them in the lab's order until nothing changes settles every goal.
+void applyGoalDependencies(const LabSpec& spec, std::vector<grader::ReportGoal>* goals) {
+    std::map<std::string, const grader::ReportGoal*> by_id;
+    for (const grader::ReportGoal& g : *goals) by_id[g.id] = &g;
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (std::size_t i = 0; i < goals->size(); ++i) {
+            grader::ReportGoal& g = (*goals)[i];
+            for (const std::string& dep : spec.goals[i].depends_on) {
+                const auto it = by_id.find(dep);
+                if (it == by_id.end() || it->second->met ||
+                    std::find(g.not_met_because.begin(), g.not_met_because.end(), dep) !=
+                        g.not_met_because.end())
+                    continue;
+                g.not_met_because.push_back(dep);
+                g.met = false;
+                changed = true;
+            }
+        }
+    }
+}
+
+// Goals: met when every check of theirs passed (and the goals they rest on are met). A goal's
+// points are shared among its scenes for the per-scene figures, so scene scores add up to the lab's.
 void scoreGoals(const LabSpec& spec, const std::map<std::pair<std::string, std::string>, bool>& checks,
                 grader::ReportLab* lab) {
+    std::vector<grader::ReportGoal> goals;
     for (const GoalSpec& goal : spec.goals) {
         grader::ReportGoal rg;
         rg.id = goal.id;
@@ -376,6 +401,12 @@ void scoreGoals(const LabSpec& spec, const std::map<std::pair<std::string, std::
                 }
             }
         }
+        goals.push_back(std::move(rg));
+    }
+    applyGoalDependencies(spec, &goals);
+    for (std::size_t i = 0; i < goals.size(); ++i) {
+        const GoalSpec& goal = spec.goals[i];
+        const grader::ReportGoal& rg = goals[i];
         const double share =
             goal.scenes.empty() ? 0.0 : goal.points / static_cast<double>(goal.scenes.size());
         for (grader::ReportScene& rs : lab->scenes) {
@@ -384,8 +415,8 @@ void scoreGoals(const LabSpec& spec, const std::map<std::pair<std::string, std::
             if (rg.met) rs.score += share;
         }
         if (rg.met) lab->score += goal.points;
-        lab->goals.push_back(std::move(rg));
     }
+    lab->goals = std::move(goals);
 }
 
 grader::ReportLab gradeLab(const std::string& submission_dir, const std::string& id,

@@ -2,6 +2,9 @@
 // attachments, how they are compared, and the goals: one per scene when lab.json gives none,
 // otherwise their references to scenes and graded passes, their points, and that every graded
 // image counts toward some goal.
+#include <algorithm>
+#include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -122,8 +125,54 @@ void Validator::checkGoals() {
         covered.insert(g.scenes.begin(), g.scenes.end());
     }
     spec_.grading.points = total;
+    checkGoalDependencies(ids);
     if (!references_ok) return;
     checkGoalCoverage(covered);
+}
+
+// depends_on names other goals of the lab, and following it never comes back to where it began.
+void Validator::checkGoalDependencies(const std::set<std::string>& ids) {
+    const std::vector<std::string> all(ids.begin(), ids.end());
+    bool known = true;
+    for (std::size_t i = 0; i < spec_.goals.size(); ++i) {
+        const GoalSpec& g = spec_.goals[i];
+        for (std::size_t k = 0; k < g.depends_on.size(); ++k) {
+            const std::string& dep = g.depends_on[k];
+            const std::string path = joinIndex(joinKey(joinIndex("goals", i), "depends_on"), k);
+            if (dep == g.id) {
+                diag_.error(path, "a goal cannot depend on itself");
+                known = false;
+            } else if (!ids.count(dep)) {
+                diag_.error(path, "no goal is called " + quoteJson(dep) + didYouMean(dep, all));
+                known = false;
+            }
+        }
+    }
+    if (!known) return;
+    // Depth-first from each goal; a goal met again on the current path closes a cycle.
+    std::map<std::string, const GoalSpec*> by_id;
+    for (const GoalSpec& g : spec_.goals) by_id[g.id] = &g;
+    std::map<std::string, int> state;  // 1: on the path, 2: done
+    std::vector<std::string> path;
+    std::function<bool(const GoalSpec&)> visit = [&](const GoalSpec& g) {
+        state[g.id] = 1;
+        path.push_back(g.id);
+        for (const std::string& dep : g.depends_on) {
+            if (state[dep] == 1) {
+                std::string cycle;
+                for (auto it = std::find(path.begin(), path.end(), dep); it != path.end(); ++it)
+                    cycle += *it + " -> ";
+                diag_.error("goals", "the goals depend on each other in a circle: " + cycle + dep);
+                return false;
+            }
+            if (state[dep] == 0 && !visit(*by_id[dep])) return false;
+        }
+        state[g.id] = 2;
+        path.pop_back();
+        return true;
+    };
+    for (const GoalSpec& g : spec_.goals)
+        if (state[g.id] == 0 && !visit(g)) return;
 }
 
 // Every graded image counts toward some goal: otherwise a lab could fail with full marks.

@@ -164,6 +164,8 @@ void Reader::run() {
             g.points = goals[i]["points"];
             if (goals[i].contains("scenes")) g.scenes = goals[i]["scenes"].get<std::vector<std::string>>();
             if (goals[i].contains("passes")) g.passes = goals[i]["passes"].get<std::vector<std::string>>();
+            if (goals[i].contains("depends_on"))
+                g.depends_on = goals[i]["depends_on"].get<std::vector<std::string>>();
             spec_.goals.push_back(std::move(g));
         }
         if (doc_.contains("grading") && doc_["grading"].contains("points"))

@@ -127,6 +127,7 @@ class Validator {
     void checkGoals();
     void addImplicitGoals();
     void checkGoalCoverage(const std::set<std::string>& covered);
+    void checkGoalDependencies(const std::set<std::string>& ids);
     // lab_spec_check_files.cpp: the lab folder and the files lab.json names.
     void checkId();
     void checkFile(const std::string& path, const std::string& file);

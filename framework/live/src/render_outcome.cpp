@@ -38,9 +38,11 @@ RenderFailure describeFailure(const LabSpec& spec, const IsolatedRender& r) {
         default:
             f.title = "The render failed (" + std::string(isolatedStatusName(r.status)) + ")";
     }
-    const bool build_error = r.status == IsolatedStatus::CompileError || r.status == IsolatedStatus::LinkError;
+    const bool build_error =
+        r.status == IsolatedStatus::CompileError || r.status == IsolatedStatus::LinkError;
     for (const Diagnostic& d : r.render.diagnostics)
-        if (d.severity == "error" || build_error) f.text += grader::formatDiagnostic(toReportDiagnostic(d)) + "\n";
+        if (d.severity == "error" || build_error)
+            f.text += grader::formatDiagnostic(toReportDiagnostic(d)) + "\n";
     if (f.text.empty() || r.status == IsolatedStatus::Timeout) f.text = r.message + "\n" + f.text;
     return f;
 }

@@ -223,7 +223,12 @@ function renderGrade(s) {
   $('goals').replaceChildren(...(lab.goals || []).map((goal) => {
     const li = el('li', { class: goal.met ? 'pass-mark' : 'fail-mark',
       text: (goal.met ? '✓ ' : '✗ ') + goal.title + ' (' + fmt(goal.points, 1) + ' pt' + (goal.points === 1 ? '' : 's') + ')' });
-    if (!goal.met && goal.failing.length) li.append(el('div', { class: 'note', text: 'not met in ' + goal.failing.join(', ') }));
+    const because = (goal.not_met_because || []).map((id) => {
+      const dep = lab.goals.find((g) => g.id === id);
+      return "'" + (dep ? dep.title : id) + "'";
+    });
+    if (!goal.met && because.length) li.append(el('div', { class: 'note', text: 'not met because ' + because.join(' and ') + (because.length > 1 ? ' are' : ' is') + ' not met' }));
+    else if (!goal.met && goal.failing.length) li.append(el('div', { class: 'note', text: 'not met in ' + goal.failing.join(', ') }));
     return li;
   }));
   $('grade-scenes').replaceChildren(...(lab.scenes || []).map((sc) => {

@@ -51,8 +51,9 @@ bool widenListenQueue(int port) {
         socklen_t len = sizeof listening;
         sockaddr_storage local{};
         socklen_t local_len = sizeof local;
-        if (fd == dirfd(dir) || getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &len) != 0 || !listening ||
-            getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_len) != 0 || portOf(local) != port)
+        if (fd == dirfd(dir) || getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &len) != 0 ||
+            !listening || getsockname(fd, reinterpret_cast<sockaddr*>(&local), &local_len) != 0 ||
+            portOf(local) != port)
             continue;
         done = listen(fd, SOMAXCONN) == 0 || done;
     }

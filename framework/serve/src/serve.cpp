@@ -127,7 +127,8 @@ void Server::handle(const httplib::Request& req, httplib::Response& res) {
             if (!bench.picture(route.seq, kind, route.index, &png))
                 return sendError(res, 404, "no such picture (an older one: ask /api/state again)");
             // A picture's number never names other pixels: it may be cached for good.
-            res.set_header("Cache-Control", kind == PictureKind::File ? "no-cache" : "max-age=3600, immutable");
+            res.set_header("Cache-Control",
+                           kind == PictureKind::File ? "no-cache" : "max-age=3600, immutable");
             res.set_content(png, "image/png");
             return;
         }
@@ -157,12 +158,14 @@ void Server::events(const httplib::Request& req, httplib::Response& res) {
         "text/event-stream",
         [this, seen](std::size_t, httplib::DataSink& sink) {
             if (stopping) return false;
-            const std::uint64_t v = *seen == 0 ? bench.version() : bench.waitForChange(*seen, std::chrono::seconds(15));
+            const std::uint64_t v =
+                *seen == 0 ? bench.version() : bench.waitForChange(*seen, std::chrono::seconds(15));
             if (stopping) return false;
             std::string msg = ": still here\n\n";
             if (v != *seen) {
                 const json state = bench.state();
-                msg = "event: state\ndata: " + state.dump(-1, ' ', false, json::error_handler_t::replace) + "\n\n";
+                msg = "event: state\ndata: " + state.dump(-1, ' ', false, json::error_handler_t::replace) +
+                      "\n\n";
                 *seen = state.value("version", v);
             }
             return sink.write(msg.data(), msg.size());
@@ -220,7 +223,9 @@ int runServe(const ServeOptions& options) {
     http.set_keep_alive_timeout(5);
     http.set_keep_alive_max_count(50);
     http.set_payload_max_length(options.max_body);
-    auto handler = [&server](const httplib::Request& req, httplib::Response& res) { server.handle(req, res); };
+    auto handler = [&server](const httplib::Request& req, httplib::Response& res) {
+        server.handle(req, res);
+    };
     http.Get(".*", handler);
     http.Post(".*", handler);
     http.Put(".*", handler);
@@ -250,13 +255,16 @@ int runServe(const ServeOptions& options) {
     // The library listens with a queue of 5: a burst of connections (a page's pictures, a flood)
     // would lose some for a second. Linux resizes the queue of a socket already listening.
     widenListenQueue(port);
-    const std::string shown_host = options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host;
+    const std::string shown_host =
+        options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host;
     std::printf("shaderlab serve: lab %s, your files in %s/%s\n", options.workbench.spec.id.c_str(),
                 options.workbench.submission_root.c_str(), options.workbench.spec.id.c_str());
     if (!loopback(options.host))
         std::printf(
-            "shaderlab serve: WARNING: listening on %s, not only on this machine: anyone who can reach it on port "
-            "%d sees your lab and can make it render. Prefer the default (127.0.0.1) with SSH port forwarding "
+            "shaderlab serve: WARNING: listening on %s, not only on this machine: anyone who can reach it on "
+            "port "
+            "%d sees your lab and can make it render. Prefer the default (127.0.0.1) with SSH port "
+            "forwarding "
             "(docs/students.md).\n",
             options.host.c_str(), port);
     std::printf("shaderlab serve: open http://%s:%d/ in your browser (Ctrl-C stops)\n",

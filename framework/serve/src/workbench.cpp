@@ -39,7 +39,8 @@ std::unique_ptr<Workbench> Workbench::create(const WorkbenchOptions& options, st
     for (const PassSpec& pass : options.spec.passes)
         for (const PassInput& in : pass.inputs)
             if (in.source == InputSource::File &&
-                std::find(impl->input_files.begin(), impl->input_files.end(), in.file) == impl->input_files.end())
+                std::find(impl->input_files.begin(), impl->input_files.end(), in.file) ==
+                    impl->input_files.end())
                 impl->input_files.push_back(in.file);
     return std::unique_ptr<Workbench>(new Workbench(std::move(impl)));
 }
@@ -309,15 +310,14 @@ std::shared_ptr<Snapshot> Workbench::Impl::buildSnapshot(std::shared_ptr<const I
         std::lock_guard<std::mutex> lock(m);
         if (reference && reference->status == IsolatedStatus::Ok && !reference->render.scenes.empty() &&
             reference_scene == scene_name && sameOrbit(reference_orbit, view_orbit))
-            snap->reference = std::shared_ptr<const std::vector<PassImage>>(
-                reference, &reference->render.scenes[0].passes);
+            snap->reference =
+                std::shared_ptr<const std::vector<PassImage>>(reference, &reference->render.scenes[0].passes);
         else if (!reference_error.empty() && reference_scene == scene_name)
             snap->reference_note = reference_error;
         else
             snap->reference_note = "the reference is rendering";
     } else if (view_orbit.any()) {
-        snap->reference_note =
-            "the stored golden images show the graded view only: go back to it to compare";
+        snap->reference_note = "the stored golden images show the graded view only: go back to it to compare";
     } else {
         // Goldens are read on this thread only.
         if (!goldens.count(scene_name) && !golden_errors.count(scene_name)) {
@@ -394,7 +394,8 @@ void Workbench::Impl::judge(const std::shared_ptr<Snapshot>& snap) {
                                         j->hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
         grader::HeatmapConfig hc;
         hc.outline = j->verdict.mismatches.empty() ? nullptr : &j->verdict.mismatches;
-        j->heat = grader::diffHeatmap(j->verdict.flip_map, e.student->color.width, e.student->color.height, hc);
+        j->heat =
+            grader::diffHeatmap(j->verdict.flip_map, e.student->color.width, e.student->color.height, hc);
         judged[i] = std::move(j);
     }
     std::lock_guard<std::mutex> lock(snap->m);

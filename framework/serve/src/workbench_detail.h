@@ -87,7 +87,7 @@ struct Workbench::Impl {
     // What the page looks at, and what the render thread is asked to do.
     std::string scene;
     CameraOrbit orbit;
-    std::uint64_t generation = 1;   // bumped by each settled change of the student's files
+    std::uint64_t generation = 1;  // bumped by each settled change of the student's files
     std::int64_t pending_save_ns = 0;
     bool want_student = false, want_reference = false, want_grade = false;
     std::string busy;  // what the render thread is doing ("" when idle)
@@ -103,7 +103,7 @@ struct Workbench::Impl {
     std::map<std::string, std::shared_ptr<const std::vector<PassImage>>> goldens;  // by scene
     std::map<std::string, std::string> golden_errors;
     std::optional<RenderFailureInfo> failure;  // the last render that gave no picture
-    nlohmann::json grade;  // the lab's grade as report.json has it (null until the first)
+    nlohmann::json grade;                      // the lab's grade as report.json has it (null until the first)
     std::uint64_t grade_generation = 0;
     std::string grade_error;
     std::map<int, std::shared_ptr<const grader::Image>> files;  // input files read, by index
@@ -120,8 +120,8 @@ struct Workbench::Impl {
                        std::int64_t save_ns);
     void renderReference(const std::string& scene, const CameraOrbit& orbit);
     void gradeLab(std::uint64_t generation);
-    std::shared_ptr<Snapshot> buildSnapshot(std::shared_ptr<const IsolatedRender> student, const std::string& scene,
-                                            const CameraOrbit& orbit);
+    std::shared_ptr<Snapshot> buildSnapshot(std::shared_ptr<const IsolatedRender> student,
+                                            const std::string& scene, const CameraOrbit& orbit);
     void judge(const std::shared_ptr<Snapshot>& snap);
     std::shared_ptr<const grader::Image> inputFile(int index);
 };

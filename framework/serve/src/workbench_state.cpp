@@ -120,10 +120,14 @@ json rgba(const grader::Image& img, int x, int y) {
 
 std::string pictureKindName(PictureKind kind) {
     switch (kind) {
-        case PictureKind::Student: return "student";
-        case PictureKind::Reference: return "reference";
-        case PictureKind::Diff: return "diff";
-        case PictureKind::File: return "file";
+        case PictureKind::Student:
+            return "student";
+        case PictureKind::Reference:
+            return "reference";
+        case PictureKind::Diff:
+            return "diff";
+        case PictureKind::File:
+            return "file";
     }
     return "";
 }
@@ -134,7 +138,8 @@ json Workbench::state() const {
     json scenes = json::array();
     for (const SceneSpec& s : w.opt.spec.scenes) scenes.push_back(s.name);
     json files = json::array();
-    for (std::size_t i = 0; i < w.input_files.size(); ++i) files.push_back({{"index", i}, {"path", w.input_files[i]}});
+    for (std::size_t i = 0; i < w.input_files.size(); ++i)
+        files.push_back({{"index", i}, {"path", w.input_files[i]}});
     json goals = json::array();
     for (const GoalSpec& g : w.opt.spec.goals)
         goals.push_back({{"id", g.id}, {"title", g.title}, {"points", g.points}, {"scenes", g.scenes}});
@@ -230,7 +235,8 @@ bool Workbench::picture(std::uint64_t seq, PictureKind kind, int index, std::str
         std::shared_ptr<const Judgement> j;
         {
             std::lock_guard<std::mutex> lock(snap->m);
-            if (static_cast<std::size_t>(index) < snap->judged.size()) j = snap->judged[static_cast<std::size_t>(index)];
+            if (static_cast<std::size_t>(index) < snap->judged.size())
+                j = snap->judged[static_cast<std::size_t>(index)];
         }
         if (!j || j->heat.empty()) return false;
         picture = shownColour(j->heat);
@@ -259,7 +265,8 @@ bool Workbench::pixel(std::uint64_t seq, int index, int x, int y, json* out) con
     *out = {{"x", x}, {"y", y}, {"student", rgba(mine, x, y)}, {"reference", json()}, {"flip", json()}};
     if (e.reference) (*out)["reference"] = rgba(e.reference->color, x, y);
     std::lock_guard<std::mutex> lock(snap->m);
-    if (static_cast<std::size_t>(index) < snap->judged.size() && snap->judged[static_cast<std::size_t>(index)]) {
+    if (static_cast<std::size_t>(index) < snap->judged.size() &&
+        snap->judged[static_cast<std::size_t>(index)]) {
         const std::vector<float>& flip = snap->judged[static_cast<std::size_t>(index)]->verdict.flip_map;
         const std::size_t at = static_cast<std::size_t>(y) * mine.width + x;
         if (at < flip.size()) (*out)["flip"] = number(flip[at]);

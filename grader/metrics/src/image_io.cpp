@@ -63,7 +63,8 @@ bool encodePng(const Image& image, std::vector<std::uint8_t>* out, std::string* 
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(state.jump)) {
         png_destroy_write_struct(&png, &info);
-        if (error) *error = "cannot encode PNG (" + (state.message.empty() ? "out of memory" : state.message) + ")";
+        if (error)
+            *error = "cannot encode PNG (" + (state.message.empty() ? "out of memory" : state.message) + ")";
         out->clear();
         return false;
     }

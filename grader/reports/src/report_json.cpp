@@ -178,6 +178,7 @@ std::string reportToJson(const Report& report) {
                              {"points", number(g.points)},
                              {"met", g.met},
                              {"failing", g.failing},
+                             {"not_met_because", g.not_met_because},
                              {"scenes", g.scenes}});
         labs.push_back({{"id", lab.id},
                         {"title", lab.title},
@@ -250,6 +251,7 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
             goal.met = g.value("met", false);
             goal.failing = g.value("failing", std::vector<std::string>{});
             goal.scenes = g.value("scenes", std::vector<std::string>{});
+            goal.not_met_because = g.value("not_met_because", std::vector<std::string>{});
             lab.goals.push_back(std::move(goal));
         }
         for (const json& s : l.value("scenes", json::array())) {

@@ -509,6 +509,22 @@ void writeScene(std::ostringstream& h, const ReportLab& lab, const ReportScene& 
     h << "</section>\n";
 }
 
+}  // namespace
+
+// "the ramp goal" or "'Ramp' and 'Edges'": the titles of the goals `ids` names, quoted.
+std::string goalsNamed(const ReportLab& lab, const std::vector<std::string>& ids) {
+    std::string out;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        std::string title = ids[i];
+        for (const ReportGoal& g : lab.goals)
+            if (g.id == ids[i]) title = g.title;
+        out += (i == 0 ? "" : i + 1 == ids.size() ? " and " : ", ") + ("'" + title + "'");
+    }
+    return out;
+}
+
+namespace {
+
 void writeGoals(std::ostringstream& h, const ReportLab& lab) {
     if (lab.goals.empty()) return;
     int met = 0;
@@ -523,9 +539,14 @@ void writeGoals(std::ostringstream& h, const ReportLab& lab) {
     h << "<div class=\"scroll\"><table class=\"goals\"><tr><th>goal</th><th>points</th><th></th></tr>\n";
     for (const ReportGoal& g : lab.goals) {
         h << "<tr><td>" << escapeMarkup(g.title);
+        if (!g.not_met_because.empty()) {
+            h << "<br><span class=\"info\">not met because "
+              << escapeMarkup(goalsNamed(lab, g.not_met_because))
+              << (g.not_met_because.size() > 1 ? " are" : " is") << " not met</span>";
+        }
         // "<scene>/<pass>" checks grouped by scene: "fails in teapot (blur1_h, blur1_v), cube (...)".
         std::string open_scene;
-        for (std::size_t i = 0; i < g.failing.size(); ++i) {
+        for (std::size_t i = 0; g.not_met_because.empty() && i < g.failing.size(); ++i) {
             const std::size_t slash = g.failing[i].find('/');
             const std::string scene = g.failing[i].substr(0, slash);
             const std::string pass = slash == std::string::npos ? "" : g.failing[i].substr(slash + 1);
@@ -538,7 +559,7 @@ void writeGoals(std::ostringstream& h, const ReportLab& lab) {
             }
             h << escapeMarkup(pass);
         }
-        if (!g.failing.empty()) h << ")</span>";
+        if (!g.failing.empty() && g.not_met_because.empty()) h << ")</span>";
         h << "</td><td class=\"num\">" << num(g.met ? g.points : 0.0, "%.2f") << " / "
           << num(g.points, "%.2f") << "</td><td class=\"num " << (g.met ? "ok\">met" : "bad\">not met")
           << "</td></tr>\n";
@@ -723,6 +744,13 @@ std::string gradescopeGoalHtml(const ReportLab& lab, const ReportGoal& goal, Bud
     if (goal.met) {
         h << "<p><b>Met</b> (" << num(goal.points, "%.2f")
           << " points): every image that shows it matches the reference.</p>";
+        return h.str();
+    }
+    if (!goal.not_met_because.empty()) {
+        h << "<p><b>Not met</b> (0 of " << num(goal.points, "%.2f") << " points) because "
+          << escapeMarkup(goalsNamed(lab, goal.not_met_because))
+          << (goal.not_met_because.size() > 1 ? " are" : " is") << " not met: this goal rests on "
+          << (goal.not_met_because.size() > 1 ? "them" : "it") << ". Look there first.</p>";
         return h.str();
     }
     h << "<p><b>Not met</b> (0 of " << num(goal.points, "%.2f")

@@ -185,6 +185,9 @@ struct GoalSpec {
     float points = 1.0f;
     std::vector<std::string> scenes;  // expanded scene names
     std::vector<std::string> passes;  // graded pass names
+    // Goals this one rests on (ids): when one of them is not met, this one is not met either, and
+    // the report says so instead of giving it a verdict of its own (docs/lab-format.md, "goals").
+    std::vector<std::string> depends_on;
     bool implicit = false;            // made by the parser for a lab without goals (one per scene)
 };
 

@@ -12,9 +12,8 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "shaderlab/gl/gl_context.h"
 #include "shaderlab/lab/lab_spec.h"
@@ -29,10 +28,10 @@ struct WorkbenchOptions {
     std::string submission_root;  // folder mirroring labs/; the student's files are in <root>/<lab id>
     std::string reference_root;   // reference solutions (same layout); empty: the stored goldens
     Backend backend = Backend::OSMesa;
-    double view_timeout_s = 5.0;  // one scene's render for the picture
+    double view_timeout_s = 5.0;                                        // one scene's render for the picture
     IsolationLimits grade_limits{10.0, 30.0, std::size_t(2048) << 20};  // `check`'s
-    bool grade = true;                                                 // grade the lab on every save
-    std::chrono::milliseconds poll{20};                                // the folder watch
+    bool grade = true;                                                  // grade the lab on every save
+    std::chrono::milliseconds poll{20};                                 // the folder watch
 };
 
 // What a picture request names: one image of a snapshot, in one form.

@@ -110,6 +110,9 @@ struct ReportGoal {
     bool met = false;
     std::vector<std::string> scenes;   // where it is seen (optional: older reports lack it)
     std::vector<std::string> failing;  // "<scene>/<pass>" checks that failed, in order
+    // The goals it rests on (lab.json "depends_on") that are not met: then it is not met because
+    // of them, whatever its own checks say, and the report says so instead of a verdict of its own.
+    std::vector<std::string> not_met_because;
 };
 
 struct ReportLab {
@@ -144,6 +147,9 @@ struct Report {
 //         |                                                             ^
 //         = Every statement ends with `;`. ...
 // `prefix` goes before the file name (e.g. "01-phong/"), `indent` before every line.
+// The titles of the goals of `lab` that `ids` names, quoted and joined: "'Ramp' and 'Edges'".
+std::string goalsNamed(const ReportLab& lab, const std::vector<std::string>& ids);
+
 std::string formatDiagnostic(const ReportDiagnostic& d, const std::string& prefix = "",
                              const std::string& indent = "");
 // Where the writers that show pictures find them. With `image_root` (the folder the report's
