@@ -227,6 +227,8 @@ TEST(BatchCli, InterruptedResumedAndShardedRunsAgree) {
     ASSERT_EQ(whole.exit_code, 0) << whole.output;
     const std::string expected = readFile(dir / "whole" / "summary.json");
 
+    // The run to kill has a cache of its own: in the whole run's, every lab is graded already.
+    const fs::path killed_cache = dir / "cache-killed";
     const std::string marker = "SHADERLAB_BATCH_TEST_" + std::to_string(getpid());
     const pid_t pid = fork();
     ASSERT_GE(pid, 0);
@@ -235,7 +237,7 @@ TEST(BatchCli, InterruptedResumedAndShardedRunsAgree) {
         const std::string out = (dir / "killed").string();
         std::freopen("/dev/null", "w", stdout);
         execl(SHADERLAB_CLI, SHADERLAB_CLI, "batch", subs.c_str(), "--out", out.c_str(), "--lab",
-              kLab.c_str(), "--timeout", "20", "--jobs", "2", "--cache", cache.c_str(),
+              kLab.c_str(), "--timeout", "20", "--jobs", "2", "--cache", killed_cache.c_str(),
               static_cast<char*>(nullptr));
         _exit(127);
     }
@@ -269,7 +271,8 @@ TEST(BatchCli, InterruptedResumedAndShardedRunsAgree) {
     }
     EXPECT_TRUE(left.empty()) << left.size() << " processes of the killed batch are still running";
 
-    const CliRun resumed = runCli(batchArgs(subs, dir / "killed", common));
+    const CliRun resumed =
+        runCli(batchArgs(subs, dir / "killed", "--jobs 2 --cache '" + killed_cache.string() + "'"));
     ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
     EXPECT_EQ(resumed.output.find("(7 graded"), std::string::npos)
         << "everything graded again: " << resumed.output;

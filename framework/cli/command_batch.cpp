@@ -4,10 +4,11 @@
 // submissions, then runs one worker process (`shaderlab batch-worker`, this same program) per
 // lab to grade, at most --jobs at a time. Each worker is its own process group, dies with the
 // batch (PR_SET_PDEATHSIG) and renders in a child of its own (renderLabIsolated) with the time
-// and memory limits. What a worker made lands in the results folder under .shaderlab/ with one
-// rename, keyed by a hash of everything it depends on, so that:
+// and memory limits. What a worker made lands in the results folder under .shaderlab/, or in the
+// cache given with --cache, with one rename, keyed by a hash of everything it depends on, so that:
 //   - the reference solution of a lab is rendered once, then taken from the cache;
-//   - a lab folder that several students submitted unchanged (the starter code) is graded once;
+//   - a lab folder that several students submitted unchanged (the starter code) is graded once,
+//     in the whole class when its shards (--shard K/N) share a cache;
 //   - a batch killed half-way and run again grades only what is missing, and a submission whose
 //     content and settings did not change since its report is skipped.
 // See docs/instructors.md.
@@ -78,9 +79,16 @@ int runBatch(const BatchArgs& args) {
     }
     std::string error;
     std::vector<batch::SubmissionSource> sources;
-    if (!batch::selectSubmissions(args.submissions_dir, args.out_dir, shard_k, shard_n, &sources, &error)) {
+    if (!batch::selectSubmissions(args.submissions_dir, args.out_dir, shard_k, shard_n, &sources, &error,
+                                  &settings.shard)) {
         std::cerr << "shaderlab: " << error << "\n";
         return 2;
+    }
+    // A shard says which it is, and of what, in its summary, so that `merge` can tell when one
+    // is missing. Without --shard the summary is a whole batch's.
+    if (!args.shard.empty()) {
+        settings.shard.index = shard_k;
+        settings.shard.count = shard_n;
     }
     // The results folder: made, writable and ours alone before any work.
     batch::ResultsFolder folder;

@@ -80,7 +80,16 @@ void unpackZip(const BatchSettings& settings, const ResultsFolder& folder, Submi
 void findLabs(const BatchSettings& settings, Submission* sub) {
     std::error_code ec;
     const std::vector<std::string>& all_ids = settings.all_lab_ids;
+    const std::string unpacked = sub->root;
     sub->root = unwrapSubmissionRoot(sub->root, all_ids);
+    // A zip's report names its files inside the zip ("alice.zip/Assignment 1/01-phong"), never
+    // the folder it was unpacked into, which is this results folder's own (a shard's, say).
+    sub->shown_root = sub->root;
+    if (sub->source.is_zip) {
+        const fs::path inside = fs::path(sub->root).lexically_relative(unpacked);
+        sub->shown_root = (fs::path(sub->source.path) / inside).lexically_normal().string();
+        while (sub->shown_root.size() > 1 && sub->shown_root.back() == '/') sub->shown_root.pop_back();
+    }
     bool any = false;
     for (const std::string& id : all_ids) any = any || fs::is_directory(fs::path(sub->root) / id, ec);
     if (!any) {
@@ -116,7 +125,7 @@ void planGradingJobs(const BatchSettings& settings, const ResultsFolder& folder,
         if (it == job_of->end()) {
             Job job;
             job.lab = lab.id;
-            job.final_dir = (folder.state / "labs" / lab.id / h.hex()).string();
+            job.final_dir = (folder.graded / lab.id / h.hex()).string();
             job.watchdog_s = 2.0 * settings.timeout_s + 300.0;
             job.argv = {settings.exe,
                         "batch-worker",
@@ -197,7 +206,7 @@ bool readLabs(const std::string& labs_root, const std::vector<std::string>& ids,
 }
 
 bool selectSubmissions(const std::string& dir, const std::string& out_dir, int shard_k, int shard_n,
-                       std::vector<SubmissionSource>* sources, std::string* error) {
+                       std::vector<SubmissionSource>* sources, std::string* error, SummaryShard* whole) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) {
         *error = dir + ": submissions folder not found";
@@ -218,6 +227,13 @@ bool selectSubmissions(const std::string& dir, const std::string& out_dir, int s
                                      return fs::weakly_canonical(s.path, e) == out_canonical;
                                  }),
                   all.end());
+    }
+    if (whole) {
+        // The names only, not the paths: the folder may be mounted elsewhere on another node.
+        Hasher list;
+        for (const SubmissionSource& s : all) list.add(fs::path(s.path).filename().string());
+        whole->submissions = all.size();
+        whole->list = list.hex();
     }
     // Every K-th of the sorted list: shards of a job array take their share without talking.
     for (std::size_t i = 0; i < all.size(); ++i)

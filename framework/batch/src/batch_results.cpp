@@ -2,6 +2,7 @@
 // whole, and the summary; see results.h. Merging shards is in batch_merge.cpp.
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 
 #include "batch_detail.h"
@@ -42,6 +43,25 @@ void removeLeftovers(const fs::path& state) {
     fs::create_directories(state / "tmp", ec);
 }
 
+// What a worker left half-made in a shared cache (`cache` and `cache`/labs/<lab>/) when it died
+// more than a day ago: another batch's worker may be writing the younger ones right now.
+void removeStaleCacheLeftovers(const fs::path& cache) {
+    std::error_code ec;
+    const auto old = fs::file_time_type::clock::now() - std::chrono::hours(24);
+    std::vector<fs::path> dirs = {cache};
+    for (const fs::directory_entry& e : fs::directory_iterator(cache / "labs", ec))
+        if (e.is_directory(ec) && !e.is_symlink(ec)) dirs.push_back(e.path());
+    std::vector<fs::path> stale;
+    for (const fs::path& dir : dirs)
+        for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+            std::error_code e2;
+            if (e.path().filename().string().find(".tmp-") != std::string::npos &&
+                fs::last_write_time(e.path(), e2) < old && !e2)
+                stale.push_back(e.path());
+        }
+    for (const fs::path& p : stale) fs::remove_all(p, ec);
+}
+
 // The report of one submission, from its labs' results.
 grader::Report assembleReport(const Submission& sub, const std::vector<LabPlan>& labs,
                               const std::vector<Job>& jobs, const BatchSettings& settings) {
@@ -74,11 +94,12 @@ grader::Report assembleReport(const Submission& sub, const std::vector<LabPlan>&
             } else {
                 lab = one.labs[0];
                 if (!one.renderer.empty()) report.renderer = one.renderer;
-                // The lab was graded in the folder of the first submission that had it: say this one.
-                replaceAll(&lab.message, one.submission, sub.root);
+                // The lab was graded in the folder of the first submission that had it, perhaps
+                // by another shard: say this one.
+                replaceAll(&lab.message, one.submission, sub.shown_root);
                 for (grader::ReportDiagnostic& d : lab.diagnostics)
-                    replaceAll(&d.message, one.submission, sub.root);
-                lab.folder = (fs::path(sub.root) / lab.id).lexically_normal().string();
+                    replaceAll(&d.message, one.submission, sub.shown_root);
+                lab.folder = (fs::path(sub.shown_root) / lab.id).lexically_normal().string();
             }
         }
         report.score += lab.score;
@@ -181,9 +202,14 @@ bool openResultsFolder(const std::string& out_dir, const std::string& cache_dir,
     removeLeftovers(state);
     folder->out = out;
     folder->state = state;
-    folder->cache = cache_dir.empty() ? state / "references" : fs::absolute(cache_dir, ec);
-    fs::create_directories(folder->cache, ec);
-    fs::create_directories(state / "labs", ec);
+    folder->cache = cache_dir.empty() ? state / "references" : fs::absolute(cache_dir, ec).lexically_normal();
+    folder->graded = cache_dir.empty() ? state / "labs" : folder->cache / "labs";
+    fs::create_directories(folder->graded, ec);
+    if (ec || !fs::is_directory(folder->graded, ec)) {
+        *error = folder->graded.string() + ": cannot make the cache there" + (ec ? ": " + ec.message() : "");
+        return false;
+    }
+    if (!cache_dir.empty()) removeStaleCacheLeftovers(folder->cache);
     fs::create_directories(state / "work", ec);
     fs::create_directories(state / "logs", ec);
     return true;

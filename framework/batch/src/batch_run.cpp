@@ -70,6 +70,7 @@ class Progress {
 Summary summaryOf(const BatchSettings& settings, const Plan& plan) {
     Summary summary;
     summary.tool_version = settings.tool_version;
+    summary.shard = settings.shard;
     for (const LabPlan& lab : plan.labs) summary.labs.push_back(lab.id);
     for (const Submission& sub : plan.subs) summary.rows.push_back(sub.row);
     return summary;
@@ -82,8 +83,11 @@ void printFigures(const BatchSettings& settings, const Plan& plan, Clock::time_p
         graded += sub.skipped ? 0 : 1;
         reused += sub.skipped ? 1 : 0;
     }
-    std::size_t ran = 0;
-    for (const Job& job : plan.jobs) ran += job.pid > 0 ? 1 : 0;
+    std::size_t ran = 0, cached = 0;
+    for (const Job& job : plan.jobs) {
+        ran += job.pid > 0 ? 1 : 0;
+        cached += job.pid <= 0 && job.ok && job.kind == Job::Grade ? 1 : 0;
+    }
     const double wall = std::chrono::duration<double>(Clock::now() - started).count();
     rusage self{}, children{};
     getrusage(RUSAGE_SELF, &self);
@@ -91,10 +95,13 @@ void printFigures(const BatchSettings& settings, const Plan& plan, Clock::time_p
     auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + t.tv_usec / 1e6; };
     const double cpu = seconds(self.ru_utime) + seconds(self.ru_stime) + seconds(children.ru_utime) +
                        seconds(children.ru_stime);
+    if (settings.shard.count > 0)
+        std::printf("shard %d/%d: %zu of the %zu submissions\n", settings.shard.index, settings.shard.count,
+                    plan.subs.size(), settings.shard.submissions);
     std::printf(
-        "%zu submissions (%zu graded, %zu unchanged since their report), %zu worker runs, %d jobs at a "
-        "time; %.1f s wall, %.1f s CPU, %.0f submissions per minute\n",
-        plan.subs.size(), graded, reused, ran, settings.jobs_max, wall, cpu,
+        "%zu submissions (%zu graded, %zu unchanged since their report), %zu worker runs, %zu graded labs "
+        "taken from the cache, %d jobs at a time; %.1f s wall, %.1f s CPU, %.0f submissions per minute\n",
+        plan.subs.size(), graded, reused, ran, cached, settings.jobs_max, wall, cpu,
         wall > 0 ? 60.0 * plan.subs.size() / wall : 0.0);
 }
 

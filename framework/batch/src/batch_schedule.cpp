@@ -1,7 +1,10 @@
 // The pool that runs a batch's jobs in worker processes; see schedule.h. It decides what runs
 // when and what a worker's end means, and prints nothing: gradeBatch (batch_run.cpp) does.
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -41,14 +44,14 @@ class Pool {
             if (sub.skipped || ready(sub)) finish(sub);
         for (;;) {
             startJobs();
-            if (running_.empty()) break;
+            if (running_.empty() && !anyDeferred()) break;
             int wstatus = 0;
-            const pid_t pid = waitpid(-1, &wstatus, WNOHANG);
+            const pid_t pid = running_.empty() ? 0 : waitpid(-1, &wstatus, WNOHANG);
             if (pid > 0 && running_.count(pid)) {
                 reaped(pid, wstatus);
                 continue;
             }
-            if (pid < 0 && errno == ECHILD) break;
+            if (pid < 0 && errno == ECHILD && !anyDeferred()) break;
             for (auto& [p, j] : running_) {
                 if (std::chrono::duration<double>(Clock::now() - jobs_[j].started).count() >
                     jobs_[j].watchdog_s)
@@ -73,8 +76,15 @@ class Pool {
         if (hooks_.finished) hooks_.finished(sub);
     }
 
+    bool anyDeferred() const {
+        for (const Job& job : jobs_)
+            if (job.deferred && !job.done) return true;
+        return false;
+    }
+
     bool startable(const Job& job) const {
         if (job.done || job.pid > 0) return false;
+        if (job.deferred && Clock::now() < job.retry_at) return false;
         if (job.kind == Job::Grade)
             for (const LabPlan& lab : labs_)
                 if (lab.id == job.lab && lab.ref_job != SIZE_MAX && !jobs_[lab.ref_job].done) return false;
@@ -83,6 +93,13 @@ class Pool {
 
     void complete(std::size_t j, bool ok, const std::string& why) {
         Job& job = jobs_[j];
+        if (job.claim_fd >= 0) {
+            // Landed: the lock file has done its work. A batch waiting on it opens the path anew
+            // (or holds the old file) and finds the result either way.
+            if (ok) unlink((job.final_dir + ".lock").c_str());
+            close(job.claim_fd);
+            job.claim_fd = -1;
+        }
         job.done = true;
         job.ok = ok;
         job.error = why;
@@ -121,6 +138,11 @@ class Pool {
                 job.final_dir += "-goldens";
                 *(std::find(job.argv.begin(), job.argv.end(), "--out") + 1) = job.final_dir;
             }
+        if (!claim(job)) return;
+        if (landed(job)) {  // another batch sharing the cache made it since the plan
+            complete(pick, true, "");
+            return;
+        }
         const std::string log = (folder_.state / "logs" /
                                  ((job.kind == Job::Reference ? "reference-" : "grade-") + job.lab + "-" +
                                   fs::path(job.final_dir).filename().string() + ".log"))
@@ -146,17 +168,47 @@ class Pool {
         while (next_ < jobs_.size() && (jobs_[next_].done || jobs_[next_].pid > 0)) ++next_;
     }
 
+    static bool landed(const Job& job) {
+        std::error_code ec;
+        return fs::exists(
+            job.kind == Job::Grade ? fs::path(job.final_dir) / "report.json" : fs::path(job.final_dir), ec);
+    }
+
+    // Takes the job's lock file (<final_dir>.lock, flock) so that batches sharing the cache run it
+    // once. false when another holds it: the job is tried again a little later, and run anyway
+    // once it has waited longer than its watchdog (the other batch may be stopped for good).
+    bool claim(Job& job) {
+        std::error_code ec;
+        fs::create_directories(fs::path(job.final_dir).parent_path(), ec);
+        const int fd =
+            open((job.final_dir + ".lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+        if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0) {
+            job.claim_fd = fd;
+            job.deferred = false;
+            return true;
+        }
+        const bool busy = fd >= 0 && errno == EWOULDBLOCK;
+        if (fd >= 0) close(fd);
+        const Clock::time_point now = Clock::now();
+        if (!busy) return true;  // no lock to be had (a read-only cache): run it
+        if (!job.deferred) job.deferred_since = now;
+        if (std::chrono::duration<double>(now - job.deferred_since).count() > job.watchdog_s) {
+            job.deferred = false;
+            return true;
+        }
+        job.deferred = true;
+        job.retry_at = now + std::chrono::milliseconds(100);
+        return false;
+    }
+
     // The worker `pid` ended: its job is done when it exited 0 and its result landed.
     void reaped(pid_t pid, int wstatus) {
-        std::error_code ec;
         const std::size_t j = running_[pid];
         running_.erase(pid);
         forgetWorker(pid);
         kill(-pid, SIGKILL);  // anything the worker left in its group
         const Job& job = jobs_[j];
-        const bool landed = fs::exists(
-            job.kind == Job::Grade ? fs::path(job.final_dir) / "report.json" : fs::path(job.final_dir), ec);
-        const bool ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0 && landed;
+        const bool ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0 && landed(job);
         complete(j, ok, ok ? std::string() : describeExit(wstatus) + lastLogLine(job.log));
     }
 

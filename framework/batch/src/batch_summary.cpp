@@ -77,11 +77,18 @@ bool summaryRowFromJson(const std::string& text, SummaryRow* out) {
 std::string summaryToJson(const Summary& summary) {
     json rows = json::array();
     for (const SummaryRow& r : summary.rows) rows.push_back(rowJson(r));
-    return dump({{"summary_version", kSummaryVersion},
-                 {"tool", "shaderlab"},
-                 {"tool_version", summary.tool_version},
-                 {"labs", summary.labs},
-                 {"submissions", rows}});
+    json j = {{"summary_version", kSummaryVersion},
+              {"tool", "shaderlab"},
+              {"tool_version", summary.tool_version},
+              {"labs", summary.labs}};
+    // Only a shard says so: a whole batch and a merge of its shards write the same bytes.
+    if (summary.shard.count > 0)
+        j["shard"] = {{"index", summary.shard.index},
+                      {"count", summary.shard.count},
+                      {"submissions", summary.shard.submissions},
+                      {"list", summary.shard.list}};
+    j["submissions"] = rows;
+    return dump(j);
 }
 
 bool summaryFromJson(const std::string& text, Summary* out, std::string* error) {
@@ -109,6 +116,21 @@ bool summaryFromJson(const std::string& text, Summary* out, std::string* error) 
             return false;
         }
         s.labs.push_back(l.get<std::string>());
+    }
+    if (j.contains("shard")) {
+        const json& sh = j["shard"];
+        if (!sh.is_object() || !sh.value("index", json()).is_number_integer() ||
+            !sh.value("count", json()).is_number_integer() ||
+            !sh.value("submissions", json()).is_number_unsigned() || !sh.value("list", json()).is_string() ||
+            sh["count"].get<int>() < 1 || sh["index"].get<int>() < 1 ||
+            sh["index"].get<int>() > sh["count"].get<int>()) {
+            *error = "'shard' must hold index and count (1 <= index <= count), submissions and list";
+            return false;
+        }
+        s.shard.index = sh["index"].get<int>();
+        s.shard.count = sh["count"].get<int>();
+        s.shard.submissions = sh["submissions"].get<std::size_t>();
+        s.shard.list = sh["list"].get<std::string>();
     }
     for (const json& r : rows) {
         SummaryRow row;

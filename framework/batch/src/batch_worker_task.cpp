@@ -64,7 +64,10 @@ int gradeLab(const WorkerTask& task, Backend backend, const fs::path& tmp, std::
 
 int runWorkerTask(const WorkerTask& task, std::vector<std::string>* errors) {
     const fs::path final_dir = task.out_dir;
-    const fs::path tmp = final_dir.string() + ".tmp-" + std::to_string(getpid());
+    // Named by host and process: batches on several machines may share the cache.
+    char host[256] = "";
+    gethostname(host, sizeof host - 1);
+    const fs::path tmp = final_dir.string() + ".tmp-" + host + "-" + std::to_string(getpid());
     std::error_code ec;
     fs::remove_all(tmp, ec);
     fs::create_directories(tmp, ec);

@@ -143,6 +143,29 @@ TEST(BatchSummary, CsvQuotesFieldsAndDefusesFormulas) {
     EXPECT_DOUBLE_EQ(back.rows[0].total, 7.5);
 }
 
+// A shard's summary says which shard it is and of what list; a whole batch's says nothing of it,
+// so that the merge of the shards writes the whole batch's bytes.
+TEST(BatchSummary, OnlyAShardRecordsItsPlan) {
+    batch::Summary s;
+    s.labs = {kLab};
+    EXPECT_EQ(batch::summaryToJson(s).find("\"shard\""), std::string::npos);
+    s.shard = {2, 8, 40, "0123456789abcdef"};
+    batch::Summary back;
+    std::string err;
+    ASSERT_TRUE(batch::summaryFromJson(batch::summaryToJson(s), &back, &err)) << err;
+    EXPECT_EQ(back.shard.index, 2);
+    EXPECT_EQ(back.shard.count, 8);
+    EXPECT_EQ(back.shard.submissions, 40u);
+    EXPECT_EQ(back.shard.list, "0123456789abcdef");
+    for (const char* bad : {"{\"index\": 9, \"count\": 8, \"submissions\": 1, \"list\": \"x\"}",
+                            "{\"index\": 0, \"count\": 8, \"submissions\": 1, \"list\": \"x\"}", "\"2/8\""}) {
+        const std::string text = std::string("{\"summary_version\": 1, \"labs\": [], \"shard\": ") + bad +
+                                 ", \"submissions\": []}";
+        EXPECT_FALSE(batch::summaryFromJson(text, &back, &err)) << bad;
+        EXPECT_NE(err.find("'shard'"), std::string::npos) << err;
+    }
+}
+
 TEST(BatchFiles, PrintableEscapesControlsAndBadUtf8) {
     EXPECT_EQ(batch::printable("Zoë\033[31m red\xff"), "Zoë\\x1B[31m red\\xFF");
     EXPECT_EQ(batch::printable(std::string(50, 'a'), 10), std::string(10, 'a') + "...");

@@ -1,14 +1,16 @@
-// Test support for the batch library's tests and the course's batch tests (tests/batch_test.cpp):
-// scratch folders, files, and zips written with libarchive, any entry name allowed (the point is to
-// write hostile ones).
+// Test support for the batch library's tests and the course's batch tests (tests/batch_test.cpp,
+// tests/batch_shards_test.cpp): scratch folders, files, commands run, and zips written with
+// libarchive, any entry name allowed (the point is to write hostile ones).
 #pragma once
 
 #include <archive.h>
 #include <archive_entry.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -37,6 +39,23 @@ inline std::string readFile(const fs::path& p) {
 inline void writeFile(const fs::path& p, const std::string& text) {
     fs::create_directories(p.parent_path());
     std::ofstream(p, std::ios::binary) << text;
+}
+
+// A shell command's exit code and its stdout and stderr together.
+struct CommandRun {
+    int exit_code = -1;
+    std::string output;
+};
+
+inline CommandRun runCommand(const std::string& command) {
+    CommandRun r;
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
+    const int status = pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
 }
 
 struct ZipEntry {

@@ -138,10 +138,20 @@ struct SummaryRow {
     std::string report;  // report.json, relative to the results folder (empty when none)
 };
 
+// What a shard of a batch (--shard K/N) was cut from, recorded in its summary.json so that
+// `merge` can tell a complete set of shards from an incomplete one.
+struct SummaryShard {
+    int index = 0;                // K, from 1
+    int count = 0;                // N; 0: not a shard (the summary of a whole batch, or of a merge)
+    std::size_t submissions = 0;  // in the whole submissions folder, every shard's together
+    std::string list;             // hash of the whole folder's sorted submission names
+};
+
 struct Summary {
     std::string tool_version;
     std::vector<std::string> labs;  // the lab columns, in order
     std::vector<SummaryRow> rows;   // by student
+    SummaryShard shard;             // written only when shard.count > 0
 };
 
 std::string summaryToJson(const Summary& summary);

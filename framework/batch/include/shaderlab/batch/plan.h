@@ -3,7 +3,10 @@
 // submission folder, and its result lands in a folder named by a hash of everything it depends
 // on (the content key), so that:
 //   - the reference solution of a lab is rendered once, then taken from the cache;
-//   - a lab folder that several students submitted unchanged (the starter code) is graded once;
+//   - a lab folder that several students submitted unchanged (the starter code) is graded once,
+//     also across the shards of a class when they share a cache (--cache): a result found there
+//     is reused, and a job another batch is running is waited for (a lock file beside its
+//     folder) rather than run twice;
 //   - a batch killed half-way and run again grades only what is missing, and a submission whose
 //     content and settings did not change since its report is skipped.
 //
@@ -39,7 +42,8 @@ struct BatchSettings {
     double compile_timeout_s = 30.0;   // context, files, compile and link
     std::size_t memory = 0;            // bytes of resident memory of each render process
     std::uint64_t max_unpacked_mib = 64;
-    int jobs_max = 1;  // worker processes at once
+    int jobs_max = 1;    // worker processes at once
+    SummaryShard shard;  // --shard K/N and the list it was cut from; count 0: not a shard
 };
 
 // One unit of work for a worker: a reference render into the cache, or one lab of one
@@ -56,6 +60,11 @@ struct Job {
     std::string error;
     std::string log;                   // its stdout and stderr
     std::vector<std::size_t> waiting;  // submissions
+    // Another batch sharing the cache runs this job (its lock is held): tried again at
+    // `retry_at`, and run here after all when it has waited longer than `watchdog_s`.
+    int claim_fd = -1;  // the lock this batch holds while its worker runs
+    bool deferred = false;
+    std::chrono::steady_clock::time_point retry_at, deferred_since;
 };
 
 struct LabPlan {
@@ -72,6 +81,7 @@ struct Submission {
     std::string folder_name;  // its report folder below the results
     std::string key;          // content + settings
     std::string root;         // the folder graded (unpacked and unwrapped)
+    std::string shown_root;   // what its report names: `root`, or inside the zip ("a.zip/dir")
     std::string status = "graded";
     std::string message;
     bool skipped = false;  // unchanged since its report
@@ -100,9 +110,12 @@ bool readLabs(const std::string& labs_root, const std::vector<std::string>& ids,
 
 // The submissions below `dir` that shard K of N grades: every N-th of the sorted list, from the
 // K-th, so that the shards of a job array take their share without talking. `out_dir`, when it
-// lies in `dir`, is not a submission. false, with the message, when `dir` cannot be listed.
+// lies in `dir`, is not a submission. `whole` (optional) gets the count and a hash of the names
+// of the whole list, which every shard records for `merge`. false, with the message, when `dir`
+// cannot be listed.
 bool selectSubmissions(const std::string& dir, const std::string& out_dir, int shard_k, int shard_n,
-                       std::vector<SubmissionSource>* sources, std::string* error);
+                       std::vector<SubmissionSource>* sources, std::string* error,
+                       SummaryShard* whole = nullptr);
 
 // Each lab's key in `plan->labs`, and a job for each reference solution that the cache does
 // not hold yet.

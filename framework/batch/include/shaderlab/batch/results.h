@@ -23,6 +23,9 @@ struct ResultsFolder {
     std::filesystem::path out;    // absolute
     std::filesystem::path state;  // <out>/.shaderlab
     std::filesystem::path cache;  // reference renders: <state>/references unless told otherwise
+    // Graded labs, by content: <state>/labs, or <cache>/labs when the cache is given (--cache),
+    // so that the shards and the reruns that share it grade a lab folder once.
+    std::filesystem::path graded;
     FolderLock lock;
 };
 
