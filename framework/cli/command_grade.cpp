@@ -148,6 +148,10 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
                     formatPsnr(s.metrics.psnr_db).c_str(), s.metrics.ssim, s.metrics.flip_mean,
                     100.0 * s.metrics.mismatch_fraction);
         if (!pass && !s.message.empty()) std::printf("       %s\n", s.message.c_str());
+        // The same known-mistake hint as the HTML report and the workbench.
+        if (!pass && !s.hint.mistake.empty())
+            std::printf("       %sThis looks like a known mistake:%s %s\n", c.bold, c.reset,
+                        grader::printableText(s.hint.about).c_str());
     }
     // What the points are for: each learning goal, met or not, and where it was not.
     for (const grader::ReportGoal& g : lab.goals) {
@@ -327,25 +331,31 @@ int runCompare(const CompareArgs& args) {
     const grader::ImageVerdict v = grader::judgeImage(a, {}, b, {}, t);
     const grader::MetricSet& m = v.frame;
     if (args.json) {
-        nlohmann::ordered_json j = {{"reference", args.a},
-                                    {"test", args.b},
-                                    {"width", a.width},
-                                    {"height", a.height},
-                                    {"psnr_db", std::isfinite(m.psnr_db) ? nlohmann::ordered_json(m.psnr_db)
-                                                                         : nlohmann::ordered_json()},
-                                    {"identical", std::isinf(m.psnr_db)},
-                                    {"ssim", m.ssim},
-                                    {"flip_mean", m.flip_mean},
-                                    {"flip_weighted_median", m.flip_weighted_median},
-                                    {"mismatch_fraction", m.mismatch_fraction},
-                                    {"pixel_tolerance", args.tolerance},
-                                    {"nan_count", v.nan_count}};
+        // SSIM needs an 11x11 window: for a smaller image it is undefined (null), as in grading.
+        nlohmann::ordered_json j = {
+            {"reference", args.a},
+            {"test", args.b},
+            {"width", a.width},
+            {"height", a.height},
+            {"psnr_db",
+             std::isfinite(m.psnr_db) ? nlohmann::ordered_json(m.psnr_db) : nlohmann::ordered_json()},
+            {"identical", std::isinf(m.psnr_db)},
+            {"ssim", m.ssim_defined ? nlohmann::ordered_json(m.ssim) : nlohmann::ordered_json()},
+            {"flip_mean", m.flip_mean},
+            {"flip_weighted_median", m.flip_weighted_median},
+            {"mismatch_fraction", m.mismatch_fraction},
+            {"pixel_tolerance", args.tolerance},
+            {"nan_count", v.nan_count}};
         std::cout << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
     } else {
+        char ssim[64];
+        std::snprintf(ssim, sizeof ssim, "%.6f", m.ssim);
         std::printf(
-            "PSNR      %s\nSSIM      %.6f\nFLIP mean %.6f\nmismatch  %.4f%% (tolerance %.3f, 1-pixel shift "
+            "PSNR      %s\nSSIM      %s\nFLIP mean %.6f\nmismatch  %.4f%% (tolerance %.3f, 1-pixel shift "
             "allowed)\n",
-            formatPsnr(m.psnr_db).c_str(), m.ssim, m.flip_mean, 100.0 * m.mismatch_fraction, args.tolerance);
+            formatPsnr(m.psnr_db).c_str(),
+            m.ssim_defined ? ssim : "undefined (the image is smaller than SSIM's 11x11 window)", m.flip_mean,
+            100.0 * m.mismatch_fraction, args.tolerance);
     }
     return 0;
 }

@@ -92,6 +92,13 @@ int runRender(const RenderArgs& args) {
         const fs::path lab_out = fs::path(args.out_dir) / id;
         fs::create_directories(lab_out, ec);
         for (const SceneRender& scene : r.scenes) {
+            // A scene whose file was refused (an unsupported extension, a broken glTF) renders
+            // nothing: the work ran and failed (docs: exit code 1), whatever the other scenes did.
+            if (!scene.error.empty()) {
+                std::cerr << id << ": scene " << scene.scene << " was not rendered: " << scene.error << "\n";
+                exit_code = std::max(exit_code, 1);
+                continue;
+            }
             // The lab's result is the last graded image; every other one is named after its pass
             // (and attachment, when the target has several or it is the depth).
             std::size_t final_index = 0;

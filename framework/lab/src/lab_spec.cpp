@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "lab_spec_steps.h"
+#include "shaderlab/base/json_messages.h"
 #include "shaderlab/base/paths.h"
 #include "shaderlab/lab/json_schema_check.h"
 
@@ -171,8 +172,17 @@ LabSpecResult parseLabSpec(const std::string& lab_dir) {
     const std::string origin = file.string();
     std::error_code ec;
     if (!fs::is_directory(lab_dir, ec)) {
+        // "02-ton": the course's labs beside it are the likely meaning.
+        std::vector<std::string> labs;
+        const fs::path parent = fs::path(lab_dir).parent_path();
+        for (fs::directory_iterator it(parent.empty() ? "." : parent, ec), end; !ec && it != end;
+             it.increment(ec))
+            if (fs::is_regular_file(it->path() / "lab.json", ec))
+                labs.push_back(it->path().filename().string());
+        std::sort(labs.begin(), labs.end());
         LabSpecResult r;
-        r.errors.push_back(origin + ": the lab folder " + lab_dir + " does not exist");
+        r.errors.push_back(origin + ": the lab folder " + lab_dir + " does not exist" +
+                           didYouMean(fs::path(lab_dir).filename().string(), labs));
         return r;
     }
     const FileText t = readFile(file.string(), kMaxLabJsonBytes);

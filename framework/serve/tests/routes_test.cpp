@@ -1,11 +1,11 @@
 // The workbench's routes: every path a request may carry maps to something the program made, and
 // nothing else; hostile paths (traversal, absolute, encoded, overlong) get nothing.
+#include "shaderlab/serve/routes.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <string>
-
-#include "shaderlab/serve/routes.h"
 
 namespace shaderlab::serve {
 namespace {
@@ -42,14 +42,34 @@ TEST(Routes, WrongMethodsAreRefused) {
 }
 
 TEST(Routes, HostilePathsReachNothing) {
-    for (const char* path :
-         {"/../etc/passwd", "/assets/../../etc/passwd", "//etc/passwd", "/etc/passwd", "/assets/",
-          "/assets/..", "/assets/./workbench.js", "/assets/workbench.js/", "/assets//workbench.js",
-          "/assets/%2e%2e/x", "/picture/1/student/../../../etc/passwd", "/picture/1/student/-1.png",
-          "/picture/1/student/1.png.png", "/picture/1/student/1", "/picture/1/source/1.png",
-          "/picture/x/student/1.png", "/picture/1/student/99999.png", "/picture/1234567890123456789/student/1.png",
-          "/api/pixel/1/1/1", "/api/pixel/1/1/1/1/1", "/api/pixel/1/1/-1/2", "/api/state/", "/api/state/../x",
-          "/index.html/..", "", "relative", "/\\..\\etc\\passwd", "/picture/1/file/../../lab.json"}) {
+    for (const char* path : {"/../etc/passwd",
+                             "/assets/../../etc/passwd",
+                             "//etc/passwd",
+                             "/etc/passwd",
+                             "/assets/",
+                             "/assets/..",
+                             "/assets/./workbench.js",
+                             "/assets/workbench.js/",
+                             "/assets//workbench.js",
+                             "/assets/%2e%2e/x",
+                             "/picture/1/student/../../../etc/passwd",
+                             "/picture/1/student/-1.png",
+                             "/picture/1/student/1.png.png",
+                             "/picture/1/student/1",
+                             "/picture/1/source/1.png",
+                             "/picture/x/student/1.png",
+                             "/picture/1/student/99999.png",
+                             "/picture/1234567890123456789/student/1.png",
+                             "/api/pixel/1/1/1",
+                             "/api/pixel/1/1/1/1/1",
+                             "/api/pixel/1/1/-1/2",
+                             "/api/state/",
+                             "/api/state/../x",
+                             "/index.html/..",
+                             "",
+                             "relative",
+                             "/\\..\\etc\\passwd",
+                             "/picture/1/file/../../lab.json"}) {
         const Route r = routeRequest("GET", path);
         EXPECT_EQ(r.kind, RouteKind::NotFound) << path;
     }

@@ -188,7 +188,7 @@ struct GoalSpec {
     // Goals this one rests on (ids): when one of them is not met, this one is not met either, and
     // the report says so instead of giving it a verdict of its own (docs/lab-format.md, "goals").
     std::vector<std::string> depends_on;
-    bool implicit = false;            // made by the parser for a lab without goals (one per scene)
+    bool implicit = false;  // made by the parser for a lab without goals (one per scene)
 };
 
 struct GradingSpec {
