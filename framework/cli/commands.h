@@ -154,7 +154,7 @@ struct BatchArgs {
     std::string out_dir;
     std::string reference_root;  // empty: reference_solutions beside labs/
     bool no_reference = false;
-    std::string cache_dir;            // reference renders; empty: <out>/.shaderlab/references
+    std::string cache_dir;            // references and graded labs; empty: in <out>/.shaderlab
     int jobs = 0;                     // 0: the number of cores
     double timeout_s = 60.0;          // drawing (IsolationLimits::timeout_s)
     double compile_timeout_s = 30.0;  // context, files, compile and link
@@ -176,6 +176,28 @@ struct MergeArgs {
     std::string out_dir;
 };
 int runMerge(const MergeArgs& args);
+
+// `shaderlab similarity`: who copied, per lab, across a class (framework/similarity/).
+struct SimilarityArgs {
+    CommonOptions common;                // labs_root and labs; the backend is not used
+    std::string submissions_dir;         // SUBMISSIONS/<student>/<lab>/<files>, folders or zips
+    std::string out_dir;                 // index.html, pairs.json, pairs/<lab>/<n>.html
+    std::vector<std::string> earlier;    // earlier classes' submissions folders (candidates only)
+    double threshold = 0.75;             // flag at this score or above
+    std::size_t min_shared = 10;         // and at least this many shared fingerprints
+    int jobs = 0;                        // labs at once; 0: the number of cores
+    std::size_t max_views = 200;         // side-by-side pages per lab
+    std::size_t kgram = 12, window = 6;  // k and w of the winnowing (similarity.h says why)
+};
+int runSimilarity(const SimilarityArgs& args);
+
+// `shaderlab class`: what the class did not learn, from a results folder (framework/classview/).
+struct ClassArgs {
+    std::string results_dir;  // of `batch` or `merge`
+    std::string out_dir;      // index.html, class.json, pictures/
+    std::string labs_root;    // for the known mistakes' pictures; empty: the course found from here
+};
+int runClass(const ClassArgs& args);
 
 // `shaderlab gradescope-bundle`: the autograder zip of a Gradescope programming assignment.
 struct GradescopeBundleArgs {

@@ -3,8 +3,12 @@
 // options; main() parses and runs the one that was given.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
 
 #include "commands.h"
+#include "shaderlab/base/json_messages.h"
 
 namespace {
 
@@ -116,7 +120,8 @@ CLI::App* addView(CLI::App& app, ViewArgs* args) {
 
 CLI::App* addServe(CLI::App& app, ServeArgs* args) {
     CLI::App* cmd = app.add_subcommand(
-        "serve", "a page in your browser on one lab of your work: pictures, verdict and goals, on every save");
+        "serve",
+        "a page in your browser on one lab of your work: pictures, verdict and goals, on every save");
     cmd->add_option("lab", args->lab, "lab id, e.g. 01-phong")->required();
     cmd->add_option("--submission", args->submission,
                     "folder mirroring labs/ (default: work/ beside labs/; reference_solutions works too)");
@@ -221,7 +226,8 @@ CLI::App* addBatch(CLI::App& app, BatchArgs* args) {
                     "reference solutions folder (default: reference_solutions beside labs/)");
     cmd->add_flag("--no-reference", args->no_reference, "grade against the stored golden images");
     cmd->add_option("--cache", args->cache_dir,
-                    "where reference renders are kept (default: <out>/.shaderlab/references)");
+                    "cache of reference renders and graded labs, shared by runs and shards "
+                    "(default: in <out>/.shaderlab)");
     cmd->add_option("--format", args->formats, "extra report formats: gradescope (results.json), junit")
         ->check(CLI::IsMember({"json", "gradescope", "junit"}));
     cmd->add_option("--max-unpacked", args->max_unpacked_mib, "MiB a submitted zip may unpack to")
@@ -253,6 +259,51 @@ CLI::App* addMerge(CLI::App& app, MergeArgs* args) {
         "merge", "merge the results folders of batch shards: summary.csv/json and reports");
     cmd->add_option("results", args->inputs, "results folders of `shaderlab batch --shard`")->required();
     cmd->add_option("--out", args->out_dir, "merged results folder")->required();
+    return cmd;
+}
+
+CLI::App* addClass(CLI::App& app, ClassArgs* args) {
+    CLI::App* cmd = app.add_subcommand(
+        "class", "what the class did not learn: a page of goals met, known mistakes, points and statuses");
+    cmd->add_option("results", args->results_dir, "results folder of `shaderlab batch` or `shaderlab merge`")
+        ->required();
+    cmd->add_option("--out", args->out_dir, "folder for index.html, class.json and the pictures")->required();
+    cmd->add_option(
+        "--labs", args->labs_root,
+        "folder holding the labs, for the known mistakes' pictures (default: the course found from here)");
+    return cmd;
+}
+
+CLI::App* addSimilarity(CLI::App& app, SimilarityArgs* args) {
+    CLI::App* cmd = app.add_subcommand(
+        "similarity",
+        "who copied: pairs of similar solutions per lab, clusters, a side-by-side view (MOSS-like)");
+    cmd->add_option("submissions", args->submissions_dir, "folder of submissions (folders or .zip files)")
+        ->required();
+    cmd->add_option("--out", args->out_dir, "folder for index.html, pairs.json and the side-by-side pages")
+        ->required();
+    cmd->add_option("--earlier", args->earlier,
+                    "submissions folder of an earlier year, compared with this class only (repeatable)");
+    cmd->add_option("--threshold", args->threshold, "flag a pair at this score (0..1) or above")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--min-shared", args->min_shared, "and only when it shares this many fingerprints")
+        ->check(CLI::Range(std::size_t(1), std::size_t(1000000)))
+        ->capture_default_str();
+    cmd->add_option("--max-views", args->max_views, "side-by-side pages per lab, highest scores first")
+        ->check(CLI::Range(std::size_t(0), std::size_t(1000000)))
+        ->capture_default_str();
+    cmd->add_option("--kgram", args->kgram, "tokens per fingerprinted run (k): shorter matches never count")
+        ->check(CLI::Range(std::size_t(4), std::size_t(100)))
+        ->capture_default_str();
+    cmd->add_option("--window", args->window,
+                    "winnowing window (w): runs of k + w - 1 tokens are always found")
+        ->check(CLI::Range(std::size_t(1), std::size_t(100)))
+        ->capture_default_str();
+    cmd->add_option("--jobs,-j", args->jobs, "labs compared at once (default: the number of cores)")
+        ->check(CLI::Range(1, 256));
+    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--lab", args->common.labs, "lab id (repeatable; default: all labs)");
     return cmd;
 }
 
@@ -331,12 +382,31 @@ int main(int argc, char** argv) {
     CLI::App* worker_cmd = addBatchWorker(app, &worker);
     MergeArgs merge;
     CLI::App* merge_cmd = addMerge(app, &merge);
+    ClassArgs class_args;
+    CLI::App* class_cmd = addClass(app, &class_args);
+    SimilarityArgs similarity;
+    CLI::App* similarity_cmd = addSimilarity(app, &similarity);
     GradescopeBundleArgs bundle;
     CLI::App* bundle_cmd = addGradescopeBundle(app, &bundle);
     GradescopeRunArgs gs_run;
     CLI::App* gs_run_cmd = addGradescopeRun(app, &gs_run);
     std::string info_backend = "auto";
     CLI::App* info_cmd = addInfo(app, &info_backend);
+
+    // "shaderlab chek": name the command meant instead of CLI11's "A subcommand is required".
+    if (argc >= 2 && argv[1][0] != '-') {
+        std::vector<std::string> shown;
+        bool known = false;
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+            known = known || sub->get_name() == argv[1];
+            if (!sub->get_group().empty()) shown.push_back(sub->get_name());
+        }
+        if (!known) {
+            std::cerr << "shaderlab: there is no command '" << argv[1] << "'"
+                      << shaderlab::didYouMean(argv[1], shown) << "; `shaderlab --help` lists them\n";
+            return 2;
+        }
+    }
 
     try {
         app.parse(argc, argv);
@@ -359,6 +429,8 @@ int main(int argc, char** argv) {
     if (batch_cmd->parsed()) return runBatch(batch);
     if (worker_cmd->parsed()) return runBatchWorker(worker);
     if (merge_cmd->parsed()) return runMerge(merge);
+    if (class_cmd->parsed()) return runClass(class_args);
+    if (similarity_cmd->parsed()) return runSimilarity(similarity);
     if (bundle_cmd->parsed()) return runGradescopeBundle(bundle);
     if (gs_run_cmd->parsed()) return runGradescopeRun(gs_run);
     return 2;
