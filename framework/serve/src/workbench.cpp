@@ -26,10 +26,6 @@ std::string imageKey(const PassImage& p) { return p.pass + "." + p.attachment; }
 
 }  // namespace
 
-bool sameOrbit(const CameraOrbit& a, const CameraOrbit& b) {
-    return a.yaw_deg == b.yaw_deg && a.pitch_deg == b.pitch_deg && a.zoom == b.zoom;
-}
-
 std::unique_ptr<Workbench> Workbench::create(const WorkbenchOptions& options, std::string* error) {
     auto impl = std::make_unique<Impl>();
     impl->opt = options;
@@ -224,7 +220,7 @@ void Workbench::Impl::renderStudent(const std::string& scene_name, const CameraO
 void Workbench::Impl::renderReference(const std::string& scene_name, const CameraOrbit& view_orbit) {
     {
         std::lock_guard<std::mutex> lock(m);
-        if (reference && reference_scene == scene_name && sameOrbit(reference_orbit, view_orbit)) return;
+        if (reference && reference_scene == scene_name && reference_orbit == view_orbit) return;
     }
     viewer::RenderRequest request;
     request.shader_dir = (fs::path(opt.reference_root) / opt.spec.id).string();
@@ -246,7 +242,7 @@ void Workbench::Impl::renderReference(const std::string& scene_name, const Camer
                               ? std::string()
                               : "the reference solution did not render: " + r->message;
         // The picture on the page gets its reference now, when it shows this view.
-        if (snapshot && snapshot->scene == scene_name && sameOrbit(snapshot->orbit, view_orbit) &&
+        if (snapshot && snapshot->scene == scene_name && snapshot->orbit == view_orbit &&
             !snapshot->reference) {
             student = snapshot->student;
             student_scene = snapshot->scene;
@@ -309,7 +305,7 @@ std::shared_ptr<Snapshot> Workbench::Impl::buildSnapshot(std::shared_ptr<const I
     if (!opt.reference_root.empty()) {
         std::lock_guard<std::mutex> lock(m);
         if (reference && reference->status == IsolatedStatus::Ok && !reference->render.scenes.empty() &&
-            reference_scene == scene_name && sameOrbit(reference_orbit, view_orbit))
+            reference_scene == scene_name && reference_orbit == view_orbit)
             snap->reference =
                 std::shared_ptr<const std::vector<PassImage>>(reference, &reference->render.scenes[0].passes);
         else if (!reference_error.empty() && reference_scene == scene_name)

@@ -126,7 +126,6 @@ struct Workbench::Impl {
     std::shared_ptr<const grader::Image> inputFile(int index);
 };
 
-bool sameOrbit(const CameraOrbit& a, const CameraOrbit& b);
 std::string pictureKindName(PictureKind kind);
 
 }  // namespace shaderlab::serve

@@ -15,14 +15,6 @@ namespace fs = std::filesystem;
 
 namespace shaderlab::viewer::detail {
 
-namespace {
-
-bool sameOrbit(const CameraOrbit& a, const CameraOrbit& b) {
-    return a.yaw_deg == b.yaw_deg && a.pitch_deg == b.pitch_deg && a.zoom == b.zoom;
-}
-
-}  // namespace
-
 const std::vector<PassImage>* Viewer::studentPasses() const {
     if (!student_ || student_->render.scenes.empty()) return nullptr;
     return &student_->render.scenes[0].passes;
@@ -34,7 +26,7 @@ const std::vector<PassImage>* Viewer::referencePasses() const {
     if (!student_) return nullptr;
     if (!opt_.reference_root.empty()) {
         if (!reference_ || reference_->status != IsolatedStatus::Ok || reference_->render.scenes.empty() ||
-            reference_scene_ != student_scene_ || !sameOrbit(reference_orbit_, student_orbit_))
+            reference_scene_ != student_scene_ || reference_orbit_ != student_orbit_)
             return nullptr;
         return &reference_->render.scenes[0].passes;
     }
@@ -77,7 +69,7 @@ void Viewer::requestReference() {
         }
         return;
     }
-    if (reference_ && reference_scene_ == sceneName() && sameOrbit(reference_orbit_, orbit_)) return;
+    if (reference_ && reference_scene_ == sceneName() && reference_orbit_ == orbit_) return;
     Job job;
     job.kind = kReference;
     job.request.shader_dir = (fs::path(opt_.reference_root) / spec_.id).string();

@@ -46,6 +46,10 @@ struct CameraOrbit {
     float pitch_deg = 0.0f;
     float zoom = 1.0f;
     bool any() const { return yaw_deg != 0.0f || pitch_deg != 0.0f || zoom != 1.0f; }
+    bool operator==(const CameraOrbit& o) const {
+        return yaw_deg == o.yaw_deg && pitch_deg == o.pitch_deg && zoom == o.zoom;
+    }
+    bool operator!=(const CameraOrbit& o) const { return !(*this == o); }
 };
 
 // Applies `orbit` to `camera` and fits the near and far planes to the scene again.
