@@ -6,6 +6,7 @@
 
 #include "class_markup.h"
 #include "grader/base/untrusted_text.h"
+#include "grader/reports/report.h"
 
 namespace shaderlab::classview {
 
@@ -32,32 +33,7 @@ int tickStep(int top) {
 
 }  // namespace
 
-std::string escapeHtml(std::string_view s) {
-    std::string out;
-    out.reserve(s.size());
-    for (char c : s) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            case '\'':
-                out += "&#39;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
+std::string escapeHtml(std::string_view s) { return grader::escapeMarkup(std::string(s)); }
 
 std::string escapeUntrusted(std::string_view s) { return escapeHtml(grader::printableText(s, 2000)); }
 

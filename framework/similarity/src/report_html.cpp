@@ -7,6 +7,7 @@
 
 #include "grader/base/atomic_file.h"
 #include "grader/base/untrusted_text.h"
+#include "grader/reports/report.h"
 #include "report_detail.h"
 
 namespace fs = std::filesystem;
@@ -123,32 +124,7 @@ void writeColumn(std::ostringstream& o, const std::vector<SourceFile>& files,
 
 }  // namespace
 
-std::string htmlEscape(const std::string& s) {
-    std::string out;
-    out.reserve(s.size());
-    for (char c : s) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            case '\'':
-                out += "&#39;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
+std::string htmlEscape(const std::string& s) { return grader::escapeMarkup(s); }
 
 std::string indexHtml(const SimilarityReport& report, const std::vector<std::string>& views) {
     std::ostringstream o;

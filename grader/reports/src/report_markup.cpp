@@ -45,6 +45,18 @@ std::size_t utf8Length(const std::string& s, std::size_t i) {
     return n;
 }
 
+std::string num(double v, const char* format = "%.3f") {
+    if (std::isinf(v) && v > 0) return "&infin;";
+    if (!std::isfinite(v)) return "n/a";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, format, v);
+    return buf;
+}
+
+std::string diagnosticLine(const ReportDiagnostic& d) { return formatDiagnostic(d); }
+
+}  // namespace
+
 // Escapes for both HTML and XML text and attributes. Invalid UTF-8 and the control characters
 // XML 1.0 forbids (even escaped) become '?', so a hostile diagnostic cannot break the file.
 std::string escapeMarkup(const std::string& s) {
@@ -89,18 +101,6 @@ std::string escapeMarkup(const std::string& s) {
     }
     return out;
 }
-
-std::string num(double v, const char* format = "%.3f") {
-    if (std::isinf(v) && v > 0) return "&infin;";
-    if (!std::isfinite(v)) return "n/a";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, v);
-    return buf;
-}
-
-std::string diagnosticLine(const ReportDiagnostic& d) { return formatDiagnostic(d); }
-
-}  // namespace
 
 std::string reportToJunit(const Report& report) {
     std::ostringstream x;

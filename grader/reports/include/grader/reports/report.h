@@ -147,6 +147,11 @@ struct Report {
 //         |                                                             ^
 //         = Every statement ends with `;`. ...
 // `prefix` goes before the file name (e.g. "01-phong/"), `indent` before every line.
+// Text made safe for HTML and XML, in content and in quoted attributes: & < > " ' escaped, and
+// invalid UTF-8 and the control characters XML 1.0 forbids replaced by '?' (a hostile name or
+// diagnostic cannot break the page). Every page the project writes escapes with it.
+std::string escapeMarkup(const std::string& s);
+
 // The titles of the goals of `lab` that `ids` names, quoted and joined: "'Ramp' and 'Edges'".
 std::string goalsNamed(const ReportLab& lab, const std::vector<std::string>& ids);
 
