@@ -21,19 +21,35 @@ namespace shaderlab::cli {
 
 namespace {
 
-// The student's lab folder, or a message that says how to get one.
+// The student's submission folder (absolute) when it holds the lab's folder, or a message that
+// says how to get one.
 bool studentLabFolder(const std::string& submission_arg, const std::string& labs_root, const std::string& lab,
                       std::string* submission) {
     *submission = submission_arg.empty() ? workRoot(labs_root) : submission_arg;
     std::error_code ec;
     const fs::path folder = fs::absolute(fs::path(*submission) / lab, ec).lexically_normal();
-    if (fs::is_directory(folder, ec)) return true;
+    if (fs::is_directory(folder, ec)) {
+        *submission = fs::absolute(*submission, ec).lexically_normal().string();
+        return true;
+    }
     std::cerr << "shaderlab: " << folder.string() << " does not exist";
     if (submission_arg.empty())
         std::cerr << ": run `shaderlab start " << lab
                   << "` first; it copies the starter code there for you to edit";
     std::cerr << "\n";
     return false;
+}
+
+// The reference solutions the window and the page compare with: --reference, else
+// reference_solutions beside labs/, when it has the lab (absolute); "" for the stored goldens.
+std::string referenceFolder(const std::string& reference_arg, const std::string& labs_root,
+                            const std::string& lab) {
+    const std::string root = reference_arg.empty()
+                                 ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
+                                 : reference_arg;
+    std::error_code ec;
+    if (!fs::is_directory(fs::path(root) / lab, ec)) return {};
+    return fs::absolute(root, ec).lexically_normal().string();
 }
 
 }  // namespace
@@ -55,7 +71,6 @@ int runView(const ViewArgs& args) {
     viewer::ViewerOptions options;
     options.spec = parsed.spec;
     if (!studentLabFolder(args.submission, labs_root, args.lab, &options.submission_root)) return 2;
-    options.submission_root = fs::absolute(options.submission_root).lexically_normal().string();
     if (!args.scene.empty()) {
         bool known = false;
         for (const SceneSpec& s : parsed.spec.scenes) known = known || s.name == args.scene;
@@ -64,14 +79,8 @@ int runView(const ViewArgs& args) {
             return 2;
         }
     }
-    if (!args.no_reference) {
-        const std::string root = args.reference_root.empty()
-                                     ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
-                                     : args.reference_root;
-        std::error_code ec;
-        if (fs::is_directory(fs::path(root) / args.lab, ec))
-            options.reference_root = fs::absolute(root).lexically_normal().string();
-    }
+    if (!args.no_reference)
+        options.reference_root = referenceFolder(args.reference_root, labs_root, args.lab);
     options.backend = chooseBackend(args.common.backend);
     options.timeout_s = args.timeout_s;
     options.scene = args.scene;
@@ -103,15 +112,7 @@ int runServe(const ServeArgs& args) {
     w.spec = parsed.spec;
     w.labs_root = fs::absolute(labs_root).lexically_normal().string();
     if (!studentLabFolder(args.submission, labs_root, args.lab, &w.submission_root)) return 2;
-    w.submission_root = fs::absolute(w.submission_root).lexically_normal().string();
-    if (!args.no_reference) {
-        const std::string root = args.reference_root.empty()
-                                     ? (fs::path(labs_root).parent_path() / "reference_solutions").string()
-                                     : args.reference_root;
-        std::error_code ec;
-        if (fs::is_directory(fs::path(root) / args.lab, ec))
-            w.reference_root = fs::absolute(root).lexically_normal().string();
-    }
+    if (!args.no_reference) w.reference_root = referenceFolder(args.reference_root, labs_root, args.lab);
     w.backend = chooseBackend(args.common.backend);
     w.view_timeout_s = args.timeout_s;
     w.grade_limits = isolationLimits(args.limits);
