@@ -144,6 +144,10 @@ struct LabGrading {
     std::map<std::pair<std::string, std::string>, bool> checks;
     // scene -> its first wrong image, for the known-mistake hints once every scene is judged
     std::map<std::string, FailingPicture> failing_pictures;
+    // scene -> its failing images, for pass isolation once every scene is judged
+    std::map<std::string, std::vector<FailingImage>> failing_images;
+    // (scene, pass) -> every graded image of that pass passed on the reference's inputs
+    std::map<std::pair<std::string, std::string>, bool> isolated_checks;
 
     void readHints() {
         if (!options.hints || hints_read) return;
@@ -306,6 +310,36 @@ std::vector<const FailingImage*> firstWrongImages(const LabGrading& lab,
     return roots;
 }
 
+// The scene's message and first failing pass from its failing images: where to look first.
+// `inherited`: failing images that match on the reference's inputs (pass isolation), so they
+// differ only because of what they read.
+std::vector<const FailingImage*> describeScene(const LabGrading& lab,
+                                               const std::vector<FailingImage>& failing,
+                                               std::size_t image_count, std::size_t inherited,
+                                               grader::ReportScene* rs) {
+    const std::vector<const FailingImage*> roots = firstWrongImages(lab, failing);
+    if (!roots.empty()) rs->first_failing_pass = lab.graded[roots.front()->image].id;
+    if (image_count == 1 && !failing.empty()) {
+        rs->message = joinReasons(failing.front().reasons);
+    } else if (roots.size() == 1 && failing.size() + inherited > 1) {
+        rs->message = "first wrong pass: '" + rs->first_failing_pass +
+                      "': " + joinReasons(roots.front()->reasons) +
+                      (inherited > 0 ? " (" + std::to_string(inherited) +
+                                           " later images differ only because of what they read: on the "
+                                           "reference's inputs they match)"
+                                     : " (later passes that use it differ too)");
+    } else {
+        for (const FailingImage* r : roots)
+            rs->message += (rs->message.empty() ? "'" : "; '") + lab.graded[r->image].id +
+                           "': " + joinReasons(r->reasons);
+        if (inherited > 0)
+            rs->message += " (" + std::to_string(inherited) +
+                           " later images differ only because of what they read: on the reference's inputs "
+                           "they match)";
+    }
+    return roots;
+}
+
 // One scene's verdict: every graded image judged, and the scene's message naming where to look.
 grader::ReportScene gradeScene(LabGrading& lab, const SceneRender& scene, const ReferenceImages& ref,
                                bool unloadable) {
@@ -327,21 +361,76 @@ grader::ReportScene gradeScene(LabGrading& lab, const SceneRender& scene, const 
         gradeImage(lab, scene, i, ref_it->second[i], ref.source, &rs, &failures);
     const std::vector<FailingImage>& failing = failures.failing;
     rs.status = failing.empty() ? "passed" : "failed";
-    const std::vector<const FailingImage*> roots = firstWrongImages(lab, failing);
-    if (!roots.empty()) rs.first_failing_pass = lab.graded[roots.front()->image].id;
-    if (scene.passes.size() == 1 && !failing.empty()) {
-        rs.message = joinReasons(failing.front().reasons);
-    } else if (roots.size() == 1 && failing.size() > 1) {
-        rs.message = "first wrong pass: '" + rs.first_failing_pass +
-                     "': " + joinReasons(roots.front()->reasons) + " (later passes that use it differ too)";
-    } else {
-        for (const FailingImage* r : roots)
-            rs.message += (rs.message.empty() ? "'" : "; '") + lab.graded[r->image].id +
-                          "': " + joinReasons(r->reasons);
-    }
+    const std::vector<const FailingImage*> roots = describeScene(lab, failing, scene.passes.size(), 0, &rs);
     if (!roots.empty() && !lab.hints.hints.empty())
         lab.failing_pictures[scene.scene] = std::move(failures.pictures[roots.front()->image]);
+    if (!failing.empty()) lab.failing_images[scene.scene] = failing;
     return rs;
+}
+
+// Whether a pass is judged in the render on the reference's inputs: an isolated pass, and every
+// pass its results reach (a blur chain isolated at its first pass is judged as a chain, fed
+// with the reference's bright image).
+bool judgedAlone(const LabGrading& lab, const PassSpec& pass) {
+    if (pass.isolate) return true;
+    const std::set<std::size_t>& before = lab.ancestors[passIndex(lab.spec, pass.name)];
+    return std::any_of(before.begin(), before.end(),
+                       [&](std::size_t j) { return lab.spec.passes[j].isolate; });
+}
+
+// Pass isolation: the scenes that failed rendered again with each isolated pass reading the
+// reference's images, and those passes judged on that. Their goals then use this verdict (a
+// wrong bright pass costs the bright goal, not the blur's), and the scene's message names the
+// images that are wrong on their own. A render that does not succeed leaves the pipeline's
+// verdicts, and the lab's message says why.
+void judgeOnReferenceInputs(LabGrading& lab, const std::string& submission_dir, const ReferenceImages& ref,
+                            grader::ReportLab* report) {
+    if (lab.failing_images.empty() || !grading_detail::isolatesAnyPass(lab.spec)) return;
+    std::vector<std::string> scenes;
+    for (const auto& [scene, failing] : lab.failing_images) scenes.push_back(scene);
+    const IsolatedRender alone =
+        grading_detail::renderOnReferenceInputs(lab.spec, submission_dir, ref, scenes, lab.options);
+    if (alone.status != IsolatedStatus::Ok) {
+        report->message += (report->message.empty() ? "" : "; ") +
+                           std::string("the passes could not be judged on the reference's inputs (") +
+                           isolatedStatusName(alone.status) + "): " + alone.message;
+        return;
+    }
+    for (const SceneRender& scene : alone.render.scenes) {
+        const auto rs = std::find_if(report->scenes.begin(), report->scenes.end(),
+                                     [&](const grader::ReportScene& r) { return r.name == scene.scene; });
+        const auto theirs = ref.scenes.find(scene.scene);
+        if (rs == report->scenes.end() || theirs == ref.scenes.end() || !scene.error.empty() ||
+            scene.passes.size() != lab.graded.size() || rs->passes.size() != lab.graded.size())
+            continue;
+        for (std::size_t i = 0; i < lab.graded.size(); ++i) {
+            const GradedImage& g = lab.graded[i];
+            if (!judgedAlone(lab, *g.pass)) continue;
+            ScopedTiming metrics_timing("metrics", lab.id, scene.scene);
+            const grader::ImageVerdict v =
+                grader::judgeImage(theirs->second[i].color, theirs->second[i].coverage, scene.passes[i].color,
+                                   scene.passes[i].coverage, imageThresholds(lab.spec, scene.scene, *g.pass),
+                                   g.hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
+            grader::ReportPass& rp = rs->passes[i];
+            rp.isolated = true;
+            rp.isolated_passed = v.passed;
+            rp.isolated_reasons = v.reasons;
+            rp.isolated_metrics = reportMetrics(v.covered, v);
+            auto& check =
+                lab.isolated_checks.emplace(std::make_pair(scene.scene, g.pass->name), true).first->second;
+            check = check && v.passed;
+        }
+        // The images wrong on their own: those not isolated, and the isolated ones that differ
+        // on the reference's inputs too.
+        const std::vector<FailingImage>& failing = lab.failing_images[scene.scene];
+        std::vector<FailingImage> wrong;
+        for (const FailingImage& f : failing)
+            if (!rs->passes[f.image].isolated || !rs->passes[f.image].isolated_passed) wrong.push_back(f);
+        if (wrong.empty()) continue;  // each pass right alone: the pipeline's message stands
+        rs->message.clear();
+        rs->first_failing_pass.clear();
+        describeScene(lab, wrong, scene.passes.size(), failing.size() - wrong.size(), &*rs);
+    }
 }
 
 // A known mistake that draws every scene it fails the way the student did explains them.
@@ -382,7 +471,9 @@ void applyGoalDependencies(const LabSpec& spec, std::vector<grader::ReportGoal>*
 
 // Goals: met when every check of theirs passed (and the goals they rest on are met). A goal's
 // points are shared among its scenes for the per-scene figures, so scene scores add up to the lab's.
-void scoreGoals(const LabSpec& spec, const std::map<std::pair<std::string, std::string>, bool>& checks,
+void scoreGoals(const LabSpec& spec,
+                const std::map<std::pair<std::string, std::string>, bool>& pipeline_checks,
+                const std::map<std::pair<std::string, std::string>, bool>& isolated_checks,
                 grader::ReportLab* lab) {
     std::vector<grader::ReportGoal> goals;
     for (const GoalSpec& goal : spec.goals) {
@@ -394,8 +485,18 @@ void scoreGoals(const LabSpec& spec, const std::map<std::pair<std::string, std::
         rg.met = true;
         for (const std::string& scene : goal.scenes) {
             for (const std::string& pass : goal.passes) {
-                const auto it = checks.find({scene, pass});
-                if (it == checks.end() || !it->second) {
+                // An isolated pass's check is its verdict on the reference's inputs where it
+                // was judged so, unless the goal is judged on the pipeline.
+                const auto alone = isolated_checks.find({scene, pass});
+                if (!goal.pipeline && alone != isolated_checks.end()) {
+                    if (!alone->second) {
+                        rg.met = false;
+                        rg.failing.push_back(scene + "/" + pass);
+                    }
+                    continue;
+                }
+                const auto it = pipeline_checks.find({scene, pass});
+                if (it == pipeline_checks.end() || !it->second) {
                     rg.met = false;
                     rg.failing.push_back(scene + "/" + pass);
                 }
@@ -489,10 +590,11 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         lab.scenes.push_back(std::move(rs));
     }
     explainSceneFailures(grading, &lab);
-    scoreGoals(spec, grading.checks, &lab);
+    judgeOnReferenceInputs(grading, submission_dir, ref, &lab);
+    scoreGoals(spec, grading.checks, grading.isolated_checks, &lab);
 
     lab.status = all_passed ? "passed" : "failed";
-    if (!unloadable.message.empty()) lab.message = unloadable.message;
+    if (!unloadable.message.empty()) lab.message += (lab.message.empty() ? "" : "; ") + unloadable.message;
     if (!grading.write_errors.empty())
         lab.message += (lab.message.empty() ? "" : "; ") + std::string("could not write images: ") +
                        joinReasons(grading.write_errors);

@@ -74,4 +74,12 @@ ShownPictures writeReportPictures(const PicturePlace& place, const GradedImage& 
                                   const grader::Image& theirs, grader::ReportPass* rp,
                                   std::vector<std::string>* errors);
 
+// Pass isolation (pass_isolation.cpp): whether a pass of the lab is judged on the reference's
+// inputs, and the submission's render of `scenes` with those passes reading the reference's
+// images (RenderOptions::stand_ins).
+bool isolatesAnyPass(const LabSpec& spec);
+IsolatedRender renderOnReferenceInputs(const LabSpec& spec, const std::string& submission_dir,
+                                       const ReferenceImages& ref, const std::vector<std::string>& scenes,
+                                       const GradeOptions& options);
+
 }  // namespace shaderlab::grading_detail

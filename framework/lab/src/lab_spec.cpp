@@ -150,6 +150,27 @@ const TargetSpec* LabSpec::findTarget(const std::string& name) const {
     return nullptr;
 }
 
+StandInSource standInSource(const LabSpec& spec, std::size_t reader, const PassInput& in) {
+    StandInSource out;
+    const TargetSpec* t = spec.findTarget(in.target);
+    if (in.source != InputSource::Target || in.attachment == "depth" || !t || t->attachments.empty() ||
+        reader >= spec.passes.size())
+        return out;
+    const std::string attachment = in.attachment.empty() ? t->attachments.front() : in.attachment;
+    const int loop = spec.passes[reader].loop;
+    for (std::size_t j = reader; j-- > 0;) {
+        const PassSpec& p = spec.passes[j];
+        if (p.target != in.target) continue;
+        if ((loop >= 0 && p.loop == loop) ||
+            std::find(p.graded.begin(), p.graded.end(), attachment) == p.graded.end())
+            return out;
+        out.pass = &p;
+        out.attachment = attachment;
+        return out;
+    }
+    return out;
+}
+
 const PassSpec* LabSpec::findPass(const std::string& name) const {
     for (const PassSpec& p : passes)
         if (p.name == name) return &p;

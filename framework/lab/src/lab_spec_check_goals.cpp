@@ -48,6 +48,26 @@ void Validator::checkGraded() {
         p.compare = d.compare.value_or(
             !p.graded.empty() && isFloatFormat(t->format) && !last ? CompareMode::Hdr : CompareMode::Display);
     }
+    for (std::size_t i = 0; i < spec_.passes.size(); ++i) checkIsolation(i);
+}
+
+// A pass run on the reference's inputs must be graded, outside a repeat group, and read at least
+// one image that a graded pass before it drew (else there is nothing to stand in for).
+void Validator::checkIsolation(std::size_t index) {
+    const PassSpec& p = spec_.passes[index];
+    if (!p.isolate) return;
+    const std::string key = joinKey(p.path, "isolate");
+    if (p.graded.empty()) {
+        diag_.error(key, "only a graded pass is judged on the reference's inputs; this one is not graded");
+    } else if (p.loop >= 0) {
+        diag_.error(key, "a pass in a repeat group reads its own previous run; it cannot be isolated");
+    } else if (std::none_of(p.inputs.begin(), p.inputs.end(), [&](const PassInput& in) {
+                   return standInSource(spec_, index, in).pass != nullptr;
+               })) {
+        diag_.error(key,
+                    "the pass reads no image that a graded pass before it drew, so there is nothing "
+                    "of the reference's to give it; leave \"isolate\" out");
+    }
 }
 
 // A lab without goals: one goal per scene, sharing the lab's points.

@@ -128,6 +128,7 @@ void Reader::run() {
         const json& g = doc_["grading"];
         readThresholds(g, spec_.grading.thresholds);
         if (g.contains("points")) spec_.grading.points = g["points"];
+        if (g.contains("margin_factor")) spec_.grading.margin_factor = g["margin_factor"];
     }
     if (doc_.contains("targets")) {
         for (const auto& item : doc_["targets"].items()) {
@@ -164,6 +165,7 @@ void Reader::run() {
             g.points = goals[i]["points"];
             if (goals[i].contains("scenes")) g.scenes = goals[i]["scenes"].get<std::vector<std::string>>();
             if (goals[i].contains("passes")) g.passes = goals[i]["passes"].get<std::vector<std::string>>();
+            g.pipeline = goals[i].value("pipeline", false);
             if (goals[i].contains("depends_on"))
                 g.depends_on = goals[i]["depends_on"].get<std::vector<std::string>>();
             spec_.goals.push_back(std::move(g));
@@ -256,6 +258,7 @@ void Reader::readPass(const json& raw, std::size_t i) {
             d.graded_list = v["graded"].get<std::vector<std::string>>();
     }
     if (v.contains("compare")) d.compare = v["compare"] == "hdr" ? CompareMode::Hdr : CompareMode::Display;
+    if (v.contains("isolate")) p.isolate = v["isolate"].get<bool>();
     p.thresholds = spec_.grading.thresholds;
     if (v.contains("thresholds")) readThresholds(v["thresholds"], p.thresholds);
     if (v.contains("repeat")) {

@@ -124,6 +124,7 @@ class Validator {
     void checkScenes();
     // lab_spec_check_goals.cpp: what is graded, and the goals that grade it.
     void checkGraded();
+    void checkIsolation(std::size_t index);
     void checkGoals();
     void addImplicitGoals();
     void checkGoalCoverage(const std::set<std::string>& covered);

@@ -90,6 +90,9 @@ struct TargetGl {
     GLenum textureTarget() const { return cube() ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D; }
 };
 
+// The GL internal format of a target's colour textures (lab_targets.cpp).
+GLenum targetInternalFormat(TargetFormat f);
+
 // A pass's render state, applied in full (pass_state.cpp), and its clears.
 void applyState(const RenderState& s, bool srgb_target, bool program_point_size);
 void clearTarget(const RenderState& s, bool has_depth);
@@ -173,7 +176,9 @@ class LabRunner {
     const LoadedScene* loadScene(const SceneSpec& scene_spec);
     void blankTargets();
     GLuint sampler(TextureFilter filter, TextureWrap wrap, bool shadow);
-    bool bindInputs(const PassSpec& pass, const ShaderProgram& prog);
+    bool bindInputs(std::size_t pass_index, const ShaderProgram& prog, const std::string& scene);
+    GLuint standInTexture(const StandIn& stand_in, const TargetGl& target);
+    void dropStandIns();
     bool setLabUniforms(const PassSpec& pass, const ShaderProgram& prog, const SceneContext& ctx);
     bool runPass(std::size_t index, int iteration, bool last_iteration, SceneContext& ctx);
     void setFrameUniforms(const PassRun& run, int iteration);
@@ -206,6 +211,7 @@ class LabRunner {
     std::string all_program_text_;                        // every program's prepared sources
     GLuint loop_guard_ = 0;                               // see createLoopGuard()
     MaterialTextures material_textures_;                  // glTF material textures, bound per draw
+    std::map<const StandIn*, GLuint> stand_in_textures_;  // this scene's (RenderOptions::stand_ins)
 };
 
 }  // namespace shaderlab::render_detail

@@ -11,9 +11,7 @@
 
 namespace shaderlab::render_detail {
 
-namespace {
-
-GLenum internalFormat(TargetFormat f) {
+GLenum targetInternalFormat(TargetFormat f) {
     switch (f) {
         case TargetFormat::RGBA8:
             return GL_RGBA8;
@@ -26,10 +24,12 @@ GLenum internalFormat(TargetFormat f) {
     }
 }
 
+namespace {
+
 bool createTarget(TargetGl* t, std::string* error) {
     const TargetSpec& s = *t->spec;
     glActiveTexture(GL_TEXTURE0 + kScratchTextureUnit);
-    const GLenum format = internalFormat(s.format);
+    const GLenum format = targetInternalFormat(s.format);
     const GLenum tex_target = t->textureTarget();
     for (int b = 0; b < t->buffers; ++b) {
         t->color[b].resize(s.attachments.size());

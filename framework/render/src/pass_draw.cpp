@@ -91,7 +91,7 @@ bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, S
 
     glUseProgram(prog.id());
     prog.restoreDefaults();
-    if (!bindInputs(pass, prog)) return false;
+    if (!bindInputs(index, prog, ctx.spec->name)) return false;
     if (!setLabUniforms(pass, prog, ctx)) return false;
     glUseProgram(prog.id());
 

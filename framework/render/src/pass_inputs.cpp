@@ -52,7 +52,48 @@ GLuint LabRunner::sampler(TextureFilter filter, TextureWrap wrap, bool shadow) {
 // Every sampler the program declares gets its own unit, so samplers of different types never
 // share one (a GL_INVALID_OPERATION at draw time). The lab's inputs are bound by the sampler type
 // the program declares; a sampler the lab does not feed reads an empty unit (black).
-bool LabRunner::bindInputs(const PassSpec& pass, const ShaderProgram& prog) {
+// The stand-in's texture, made on first use in this scene like the target it replaces: the same
+// internal format, size and faces, mipmapped when the target is. Rows go back to GL's order
+// (readBack's in reverse: 2D images were flipped to top row first, cube faces were not).
+GLuint LabRunner::standInTexture(const StandIn& stand_in, const TargetGl& target) {
+    const auto found = stand_in_textures_.find(&stand_in);
+    if (found != stand_in_textures_.end()) return found->second;
+    const grader::Image& img = stand_in.image;
+    const int w = target.spec->width, h = target.spec->height, faces = target.faces();
+    if (img.width != w * faces || img.height != h || img.channels < 1) return 0;
+    const GLenum tex_target = target.textureTarget();
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glActiveTexture(GL_TEXTURE0 + kScratchTextureUnit);
+    glBindTexture(tex_target, tex);
+    std::vector<float> face(static_cast<std::size_t>(w) * h * 4);
+    for (int f = 0; f < faces; ++f) {
+        for (int y = 0; y < h; ++y) {
+            const int src_y = target.cube() ? y : h - 1 - y;
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 4; ++c)
+                    face[(static_cast<std::size_t>(y) * w + x) * 4 + c] =
+                        c < img.channels ? img.at(f * w + x, src_y, c) : 1.0f;
+        }
+        const GLenum image =
+            target.cube() ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + static_cast<GLenum>(f) : GL_TEXTURE_2D;
+        glTexImage2D(image, 0, static_cast<GLint>(targetInternalFormat(target.spec->format)), w, h, 0,
+                     GL_RGBA, GL_FLOAT, face.data());
+    }
+    if (target.mipmapped) glGenerateMipmap(tex_target);
+    glBindTexture(tex_target, 0);
+    glActiveTexture(GL_TEXTURE0);
+    stand_in_textures_[&stand_in] = tex;
+    return tex;
+}
+
+void LabRunner::dropStandIns() {
+    for (auto& [stand_in, tex] : stand_in_textures_) glDeleteTextures(1, &tex);
+    stand_in_textures_.clear();
+}
+
+bool LabRunner::bindInputs(std::size_t pass_index, const ShaderProgram& prog, const std::string& scene) {
+    const PassSpec& pass = spec_.passes[pass_index];
     for (const auto& [unit, target] : bound_units_) {
         glActiveTexture(GL_TEXTURE0 + unit);
         glBindTexture(target, 0);
@@ -127,6 +168,13 @@ bool LabRunner::bindInputs(const PassSpec& pass, const ShaderProgram& prog) {
                 const std::size_t index =
                     in->attachment.empty() ? 0 : static_cast<std::size_t>(at - t.spec->attachments.begin());
                 texture = t.color[t.front][index];
+                if (pass.isolate && !options_.stand_ins.empty()) {
+                    const StandInSource source = standInSource(spec_, pass_index, *in);
+                    for (const StandIn& s : options_.stand_ins)
+                        if (source.pass && s.scene == scene && s.pass == source.pass->name &&
+                            s.attachment == source.attachment)
+                            if (const GLuint stand_in = standInTexture(s, t)) texture = stand_in;
+                }
             }
         } else {
             const bool mipmaps = filter == TextureFilter::Mipmap;

@@ -53,6 +53,7 @@ LabRunner::~LabRunner() {
     glActiveTexture(GL_TEXTURE0);
     glBindVertexArray(0);
     for (auto& [key, tex] : input_textures_) glDeleteTextures(1, &tex.id);
+    dropStandIns();
     for (auto& [key, sampler] : samplers_) glDeleteSamplers(1, &sampler);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (loop_guard_) glDeleteBuffers(1, &loop_guard_);
@@ -243,6 +244,7 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
         return true;
     }
     blankTargets();
+    dropStandIns();
     SceneContext ctx;
     ctx.spec = &scene_spec;
     ctx.scene = scene;

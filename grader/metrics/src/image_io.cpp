@@ -189,4 +189,40 @@ bool readHdr(const std::string& path, Image* image, std::string* error) {
     return true;
 }
 
+namespace {
+
+void appendBytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+}
+
+}  // namespace
+
+void quantizeAsStored(Image* image, bool hdr) {
+    if (!hdr) {
+        for (float& v : image->pixels)
+            v = static_cast<float>(std::lround(std::clamp(std::isnan(v) ? 0.0f : v, 0.0f, 1.0f) * 255.0f)) /
+                255.0f;
+        return;
+    }
+    const std::size_t n = static_cast<std::size_t>(image->width) * image->height;
+    if (image->channels < 3 || n == 0 || image->pixels.size() != n * image->channels) return;
+    std::vector<float> rgb(n * 3);
+    for (std::size_t p = 0; p < n; ++p)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const float v = image->pixels[p * image->channels + k];
+            rgb[p * 3 + k] = std::isfinite(v) && v > 0.0f ? v : 0.0f;
+        }
+    std::vector<std::uint8_t> encoded;
+    if (!stbi_write_hdr_to_func(appendBytes, &encoded, image->width, image->height, 3, rgb.data())) return;
+    int w = 0, h = 0, c = 0;
+    float* data = stbi_loadf_from_memory(encoded.data(), static_cast<int>(encoded.size()), &w, &h, &c, 4);
+    if (!data) return;
+    Image out(w, h, 4);
+    std::copy_n(data, out.pixels.size(), out.pixels.begin());
+    stbi_image_free(data);
+    *image = std::move(out);
+}
+
 }  // namespace grader

@@ -137,7 +137,12 @@ std::string reportToJson(const Report& report) {
         json scenes = json::array();
         for (const ReportScene& s : lab.scenes) {
             json passes = json::array();
-            for (const ReportPass& p : s.passes)
+            for (const ReportPass& p : s.passes) {
+                json alone = nullptr;
+                if (p.isolated)
+                    alone = {{"passed", p.isolated_passed},
+                             {"reasons", p.isolated_reasons},
+                             {"metrics", metrics(p.isolated_metrics)}};
                 passes.push_back({{"name", p.name},
                                   {"pass", p.pass},
                                   {"attachment", p.attachment},
@@ -153,7 +158,9 @@ std::string reportToJson(const Report& report) {
                                   {"non_finite_region", box(p.non_finite_box)},
                                   {"zoom_region", box(p.zoom_region)},
                                   {"images", images(p.student_image, p.reference_image, p.diff_image,
-                                                    p.signed_image, p.zoom_image)}});
+                                                    p.signed_image, p.zoom_image)},
+                                  {"on_reference_inputs", alone}});
+            }
             scenes.push_back({{"name", s.name},
                               {"status", s.status},
                               {"score", number(s.score)},
@@ -297,6 +304,13 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
                 pass.worst_region = boxFrom(p.value("worst_region", json()));
                 pass.non_finite_box = boxFrom(p.value("non_finite_region", json()));
                 pass.zoom_region = boxFrom(p.value("zoom_region", json()));
+                const json alone = p.value("on_reference_inputs", json());
+                if (alone.is_object()) {
+                    pass.isolated = true;
+                    pass.isolated_passed = alone.value("passed", false);
+                    pass.isolated_reasons = alone.value("reasons", std::vector<std::string>{});
+                    pass.isolated_metrics = metricsFrom(alone.value("metrics", json()));
+                }
                 scene.passes.push_back(std::move(pass));
             }
             lab.scenes.push_back(std::move(scene));

@@ -373,6 +373,10 @@ void writeImageBlock(std::ostringstream& h, const ReportPass& p, const detail::A
         if (p.range == "hdr" && p.hdr_scale > 1.0)
             h << " <span class=\"info\">(compared above 1: shown divided by "
               << escapeMarkup(fixed(p.hdr_scale, 2)) << ")</span>";
+        if (p.isolated)
+            h << " <span class=\"" << (p.isolated_passed ? "ok" : "bad") << "\">on the reference's inputs: "
+              << (p.isolated_passed ? "matches (it differs only because of what it reads)" : "differs too")
+              << "</span>";
         h << "</p>\n";
     }
     const bool broken = p.metrics.nan_count + p.metrics.inf_count > 0;

@@ -145,6 +145,9 @@ struct PassSpec {
     CompareMode compare = CompareMode::Display;
     GradingThresholds thresholds;  // the lab's, with this pass's overrides
     int loop = -1;                 // index into LabSpec::loops, -1 outside any loop
+    // Pass isolation: the pass is judged a second time on the reference's inputs (the
+    // reference's images of the graded passes it reads), and its goals use that verdict.
+    bool isolate = false;
     std::string path;
 };
 
@@ -188,12 +191,17 @@ struct GoalSpec {
     // Goals this one rests on (ids): when one of them is not met, this one is not met either, and
     // the report says so instead of giving it a verdict of its own (docs/lab-format.md, "goals").
     std::vector<std::string> depends_on;
+    // Judged on the student's pipeline as it is, even where its passes are isolated (an error
+    // that adds up pass after pass, like a blur pyramid's, shows only there).
+    bool pipeline = false;
     bool implicit = false;  // made by the parser for a lab without goals (one per scene)
 };
 
 struct GradingSpec {
     float points = 10.0f;  // the lab's maximum score: the sum of its goals' points
     GradingThresholds thresholds;
+    // `corpus --margins` flags a corpus verdict that holds by less than this factor (advice only).
+    float margin_factor = 2.0f;
 };
 
 struct LabSpec {
@@ -238,5 +246,15 @@ std::string sharedFolder(const std::string& labs_root);
 // Where a lab file named in lab.json lives: <labs_root>/<path> for shared/..., else
 // <lab_dir>/<path>.
 std::string labFilePath(const LabSpec& spec, const std::string& path);
+
+// Pass isolation (PassSpec::isolate): the graded image that stands in for what input `in` of
+// pass `reader` reads when the reader is run on the reference's inputs. That is the image of the
+// last pass before the reader that drew the input's target, when that pass grades the attachment
+// read and is outside the reader's repeat group. Null when the reader reads its own work there.
+struct StandInSource {
+    const PassSpec* pass = nullptr;
+    std::string attachment;  // the graded attachment read
+};
+StandInSource standInSource(const LabSpec& spec, std::size_t reader, const PassInput& in);
 
 }  // namespace shaderlab

@@ -57,6 +57,13 @@ struct LabRender {
     bool endless_loop = false;
 };
 
+// Pass isolation (PassSpec::isolate): an image that stands in for what isolated passes read, the
+// reference's image of one graded pass in one scene (as the grader has it: PassImage::color).
+struct StandIn {
+    std::string scene, pass, attachment;
+    grader::Image image;
+};
+
 struct RenderOptions {
     bool keep_all_passes = false;          // read back ungraded passes too (debugging a multi-pass lab)
     std::vector<std::string> only_scenes;  // empty: all scenes of the lab
@@ -70,6 +77,10 @@ struct RenderOptions {
     // "scene <scene>", "pass <scene> <pass>" (a repeated pass on its first run only) and
     // "done <scene> <milliseconds>". May be empty.
     std::function<void(const std::string&)> progress;
+    // When set, every pass with `isolate` reads these instead of what the submission's own passes
+    // drew, wherever one is given (standInSource in lab_spec.h says which it wants). Empty: the
+    // pipeline as it is.
+    std::vector<StandIn> stand_ins;
 };
 
 // Renders `spec` with the shader files found in `shader_dir` (the submission's lab folder,

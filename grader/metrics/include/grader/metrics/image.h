@@ -45,4 +45,10 @@ bool readPng(const std::string& path, Image* image, std::string* error);
 bool writeHdr(const Image& image, const std::string& path, std::string* error);
 bool readHdr(const std::string& path, Image* image, std::string* error);
 
+// The image as it would read back from its stored golden: writePng then readPng (display range),
+// or writeHdr then readHdr (hdr range), without a file. Pass isolation gives a pass the reference's
+// images this way, so a grade that renders the reference and one that reads the goldens feed it
+// the same values.
+void quantizeAsStored(Image* image, bool hdr);
+
 }  // namespace grader

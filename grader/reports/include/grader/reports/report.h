@@ -75,6 +75,12 @@ struct ReportPass {
     PixelBox zoom_region;       // what zoom_image enlarges (a failing image only)
     std::string signed_image;   // too bright / too dark
     std::string zoom_image;     // zoom_region of student, reference and FLIP map, side by side
+    // Pass isolation: the same pass run on the reference's inputs (lab.json `isolate`), judged
+    // when its scene failed; the pass's goals use this verdict. `isolated` false: not judged so.
+    bool isolated = false;
+    bool isolated_passed = false;
+    std::vector<std::string> isolated_reasons;
+    ReportMetrics isolated_metrics;
 };
 
 // A failing scene whose picture is close to a known mistake's (tests/corpus/<lab>, stored as
