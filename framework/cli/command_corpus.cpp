@@ -13,17 +13,19 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "commands.h"
+#include "corpus_cases.h"
+#include "corpus_margins.h"
 #include "grader/metrics/metrics.h"
 #include "grader/reports/report.h"
 #include "shaderlab/base/paths.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/grading/mistake_hints.h"
-#include "shaderlab/lab/json_schema_check.h"
 #include "shaderlab/lab/lab_catalog.h"
 #include "shaderlab/lab/lab_spec.h"
 
@@ -34,42 +36,6 @@ namespace shaderlab::cli {
 
 namespace {
 
-// What cases.json may say; checked with the same schema machinery as lab.json.
-const char* const kCasesSchema = R"({
-  "type": "object", "additionalProperties": false, "required": ["lab", "cases"],
-  "properties": {
-    "$comment": { "type": "string" },
-    "lab": { "type": "string", "pattern": "^[A-Za-z0-9_-]{1,64}$" },
-    "cases": {
-      "type": "array", "minItems": 1,
-      "items": {
-        "type": "object", "additionalProperties": false, "required": ["name", "kind", "about"],
-        "properties": {
-          "name": { "type": "string", "pattern": "^[A-Za-z0-9_-]{1,64}$", "x-expected": "a folder name" },
-          "kind": { "enum": ["mistake", "alternative", "broken"] },
-          "about": { "type": "string", "minLength": 1 },
-          "fails": { "type": "array", "minItems": 1, "items": { "type": "string" } },
-          "keeps": { "type": "array", "minItems": 1, "items": { "type": "string" } },
-          "status": { "enum": ["failed", "compile_error", "link_error", "missing", "timeout", "crashed"] },
-          "diagnostic": {
-            "type": "object", "additionalProperties": false, "required": ["file", "line"],
-            "properties": { "file": { "type": "string" }, "line": { "type": "integer", "minimum": 0 } }
-          },
-          "delete": { "type": "array", "minItems": 1, "items": { "type": "string" } },
-          "timeout": { "type": "number", "exclusiveMinimum": 0, "maximum": 600 }
-        }
-      }
-    }
-  }
-})";
-
-struct Case {
-    std::string name, kind, about, status;
-    std::vector<std::string> fails, keeps, remove;
-    std::optional<std::pair<std::string, int>> diagnostic;
-    double timeout_s = 0.0;
-};
-
 struct Outcome {
     std::string lab, name, kind, about;
     std::string status;
@@ -78,64 +44,8 @@ struct Outcome {
     bool ok = false;
     std::string why;  // when !ok: the expectation that did not hold
     std::string report;
+    json margins;  // with --margins: the case's tightest margins (corpus_margins.h)
 };
-
-bool loadCases(const fs::path& file, const LabSpec& spec, std::vector<Case>* out,
-               std::vector<std::string>* errors) {
-    const FileText t = readFile(file.string(), 1u << 20);
-    if (!t.ok) {
-        errors->push_back(file.string() + ": " + t.error);
-        return false;
-    }
-    const json doc = json::parse(t.text, nullptr, false);
-    if (doc.is_discarded()) {
-        errors->push_back(file.string() + ": not valid JSON");
-        return false;
-    }
-    static const json schema = json::parse(kCasesSchema);
-    static const JsonSchemaChecker checker(schema);
-    for (const SchemaProblem& p : checker.check(doc))
-        errors->push_back(file.string() + ": " + (p.path.empty() ? "" : p.path + ": ") + p.problem);
-    if (!errors->empty()) return false;
-    if (doc["lab"] != spec.id)
-        errors->push_back(file.string() + ": lab: is " + doc["lab"].dump() + ", not " + spec.id);
-    std::vector<std::string> goal_ids;
-    for (const GoalSpec& g : spec.goals) goal_ids.push_back(g.id);
-    const json& cases = doc["cases"];
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-        const json& c = cases[i];
-        const std::string path = file.string() + ": cases[" + std::to_string(i) + "]";
-        Case k;
-        k.name = c["name"];
-        k.kind = c["kind"];
-        k.about = c["about"];
-        k.status = c.value("status", k.kind == "mistake"       ? "failed"
-                                     : k.kind == "alternative" ? "passed"
-                                                               : "");
-        if (c.contains("fails")) k.fails = c["fails"].get<std::vector<std::string>>();
-        if (c.contains("keeps")) k.keeps = c["keeps"].get<std::vector<std::string>>();
-        if (c.contains("delete")) k.remove = c["delete"].get<std::vector<std::string>>();
-        if (c.contains("diagnostic")) k.diagnostic = {{c["diagnostic"]["file"], c["diagnostic"]["line"]}};
-        k.timeout_s = c.value("timeout", 0.0);
-        if (k.kind == "mistake" && k.fails.empty())
-            errors->push_back(path + ".fails: a mistake names the goals it must fail (its learning goal)");
-        if (k.kind == "broken" && !c.contains("status"))
-            errors->push_back(path + ".status: a broken case names the status it must end with");
-        if (k.kind == "alternative" && (c.contains("fails") || c.contains("status")))
-            errors->push_back(path + ": an alternative must pass; it has no \"fails\" or \"status\"");
-        for (const auto* list : {&k.fails, &k.keeps})
-            for (const std::string& g : *list)
-                if (std::find(goal_ids.begin(), goal_ids.end(), g) == goal_ids.end())
-                    errors->push_back(path + ": " + spec.id + " has no goal \"" + g + "\"");
-        std::error_code ec;
-        if (!fs::is_directory(file.parent_path() / k.name, ec) && k.remove.empty())
-            errors->push_back(path + ": no folder " + (file.parent_path() / k.name).string());
-        for (const Case& other : *out)
-            if (other.name == k.name) errors->push_back(path + ".name: \"" + k.name + "\" is listed twice");
-        out->push_back(std::move(k));
-    }
-    return errors->empty();
-}
 
 // A submission folder for one case: the reference's student files, then the case's files over
 // them, then the deletions.
@@ -244,7 +154,22 @@ std::string compareHints(const LabHints& stored, const LabHints& fresh) {
     return {};
 }
 
-Outcome judge(const std::string& lab, const Case& c, const grader::Report& report, const std::string& where) {
+// The goals a mistake may fail: those it names, and every goal that rests on one of them
+// (depends_on, followed through), since such a goal is not met because of it.
+std::set<std::string> expectedFailures(const LabSpec& spec, const std::vector<std::string>& fails) {
+    std::set<std::string> out(fails.begin(), fails.end());
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (const GoalSpec& g : spec.goals)
+            if (!out.count(g.id) && std::any_of(g.depends_on.begin(), g.depends_on.end(),
+                                                [&](const std::string& d) { return out.count(d) > 0; }))
+                grew = out.insert(g.id).second;
+    }
+    return out;
+}
+
+Outcome judge(const LabSpec& spec, const Case& c, const grader::Report& report, const std::string& where) {
+    const std::string& lab = spec.id;
     Outcome o;
     o.lab = lab;
     o.name = c.name;
@@ -274,13 +199,17 @@ Outcome judge(const std::string& lab, const Case& c, const grader::Report& repor
     } else if (l.status != c.status) {
         o.why = "must end as " + c.status;
     } else if (c.kind == "mistake") {
+        // A mistake costs the goal whose idea it breaks and the goals declared to rest on it,
+        // nothing else (issue 24: the grade names the one idea missed).
         if (full) o.why = "must lose points";
+        const std::set<std::string> expected = expectedFailures(spec, c.fails);
         for (const std::string& g : c.fails)
             if (goalMet(g))
                 o.why += (o.why.empty() ? "" : "; ") + std::string("goal ") + g + " must not be met";
-        for (const std::string& g : c.keeps)
-            if (!goalMet(g))
-                o.why += (o.why.empty() ? "" : "; ") + std::string("goal ") + g + " must stay met";
+        for (const grader::ReportGoal& g : l.goals)
+            if (!g.met && !expected.count(g.id))
+                o.why += (o.why.empty() ? "" : "; ") + std::string("goal ") + g.id +
+                         " must stay met (only the goals in \"fails\" and those resting on them may fail)";
     }
     if (o.why.empty() && c.diagnostic) {
         bool found = false;
@@ -297,6 +226,7 @@ struct CorpusSetup {
     std::string labs_root;
     fs::path corpus, reference_root, out;
     GradeOptions base;
+    bool margins = false;
 };
 
 // How the lab's known-mistake hints did on its mistakes, as they are graded.
@@ -337,8 +267,9 @@ std::vector<std::pair<Case, fs::path>> labSubmissions(const CorpusSetup& setup, 
 
 // Grades one submission of the lab into <out>/<lab>/reports/<case>/, judges it and prints its
 // line. A mistake's report goes to `tally` (which keeps a pointer to `c`).
-Outcome gradeCase(const CorpusSetup& setup, const std::string& id, const Case& c, const fs::path& submission,
+Outcome gradeCase(const CorpusSetup& setup, const LabSpec& spec, const Case& c, const fs::path& submission,
                   HintTally* tally) {
+    const std::string& id = spec.id;
     std::error_code ec;
     GradeOptions options = setup.base;
     options.labs = {id};
@@ -351,7 +282,7 @@ Outcome gradeCase(const CorpusSetup& setup, const std::string& id, const Case& c
     std::ofstream(report_file) << grader::reportToJson(report);
     std::ofstream(fs::path(options.out_dir) / "report.html")
         << grader::reportToHtml(report, {options.out_dir, 20u << 20});
-    Outcome o = judge(id, c, report, report_file.string());
+    Outcome o = judge(spec, c, report, report_file.string());
     if (c.kind == "mistake" && !report.labs.empty()) {
         bool own = false, other = false;
         for (const grader::ReportScene& s : report.labs.front().scenes) {
@@ -439,9 +370,14 @@ void runLabCorpus(const CorpusSetup& setup, const std::string& id, std::vector<O
     const std::vector<std::pair<Case, fs::path>> runs =
         labSubmissions(setup, id, parsed.spec, cases, readable);
     HintTally tally;
-    for (const auto& [c, submission] : runs) outcomes->push_back(gradeCase(setup, id, c, submission, &tally));
+    for (const auto& [c, submission] : runs)
+        outcomes->push_back(gradeCase(setup, parsed.spec, c, submission, &tally));
     checkHints(id, parsed.spec, tally, outcomes);
     printSeparation(id, *outcomes);
+    if (!setup.margins) return;
+    const std::map<std::string, json> margins = reportLabMargins(parsed.spec, cases, setup.out / id);
+    for (Outcome& o : *outcomes)
+        if (o.lab == id && margins.count(o.name)) o.margins = margins.at(o.name);
 }
 
 // corpus.json, one entry per outcome. Whether every outcome is as expected.
@@ -461,6 +397,7 @@ bool writeCorpusSummary(const fs::path& out, const std::vector<Outcome>& outcome
                            {"ok", o.ok},
                            {"expected", o.why},
                            {"report", o.report}});
+        if (!o.margins.is_null()) summary.back()["margins"] = o.margins;
     }
     std::ofstream(out / "corpus.json") << summary.dump(2) << "\n";
     std::printf("corpus: %s\n", fs::absolute(out / "corpus.json").string().c_str());
@@ -497,6 +434,7 @@ int runCorpus(const CorpusArgs& args) {
     setup.base.labs_root = labs_root;
     setup.base.limits.timeout_s = args.timeout_s;
     if (args.use_reference) setup.base.reference_root = setup.reference_root.string();
+    setup.margins = args.margins;
 
     std::vector<Outcome> outcomes;
     bool readable = true;

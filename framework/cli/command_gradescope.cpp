@@ -149,8 +149,8 @@ int runGradescopeBundle(const GradescopeBundleArgs& args) {
     if (!resolveLabsRoot(args.common, &labs_root)) return 2;
     const fs::path source = fs::path(labs_root).parent_path();
     std::error_code ec;
-    for (const char* needed :
-         {"CMakeLists.txt", "framework", "grader", "cmake", "scripts/setup.sh", "docs/lab.schema.json"}) {
+    for (const char* needed : {"CMakeLists.txt", "framework", "grader", "cmake", "scripts/setup.sh",
+                               "docs/lab.schema.json", "docs/corpus.schema.json"}) {
         if (!fs::exists(source / needed, ec)) {
             std::cerr << "shaderlab: " << (source / needed).string()
                       << " not found: gradescope-bundle packs the shaderlab source tree the labs are in\n";
@@ -190,7 +190,8 @@ exec "$bin" gradescope-run --root "$root" --labs "$source_dir/labs" --reference 
            " --timeout " + timeout + "\n";
     items.push_back({"run_autograder", "", run, true});
 
-    for (const char* file : {"CMakeLists.txt", "README.md", "scripts/setup.sh", "docs/lab.schema.json"})
+    for (const char* file : {"CMakeLists.txt", "README.md", "scripts/setup.sh", "docs/lab.schema.json",
+                             "docs/corpus.schema.json"})
         if (fs::is_regular_file(source / file, ec))
             items.push_back({file, (source / file).string(), "", false});
     for (const char* folder : {"cmake", "framework", "grader"})

@@ -143,8 +143,24 @@ struct CorpusArgs {
     std::string out_dir;
     bool use_reference = false;  // render the reference instead of reading the goldens
     double timeout_s = 10.0;
+    bool margins = false;  // print and write how far each verdict is from turning (corpus_margins.h)
 };
 int runCorpus(const CorpusArgs& args);
+
+// `shaderlab corpus add-case`: a case added to tests/corpus/<lab>/ from a folder of the lab's
+// files, storing only those that differ from the reference (command_corpus_add_case.cpp).
+struct CorpusAddCaseArgs {
+    CommonOptions common;  // labs_root only
+    std::string lab, name;
+    std::string kind;                // mistake, alternative or broken
+    std::vector<std::string> fails;  // a mistake's goals
+    std::string status;              // a broken case's status (a mistake's is "failed")
+    std::string about;
+    std::string from;            // the lab's files, or a submission holding <lab>/
+    std::string corpus_root;     // empty: tests/corpus beside the labs folder
+    std::string reference_root;  // empty: reference_solutions beside the labs folder
+};
+int runCorpusAddCase(const CorpusAddCaseArgs& args);
 
 // `shaderlab batch`: every submission (folder or .zip) below `submissions_dir`, each lab in a
 // worker process; see command_batch.cpp and docs/instructors.md.

@@ -191,13 +191,47 @@ CLI::App* addCorpus(CLI::App& app, CorpusArgs* args) {
         "corpus", "grade each lab's known mistakes and alternative solutions and check the verdicts");
     cmd->add_option("--corpus", args->corpus_root, "folder of <lab>/cases.json (default: tests/corpus)");
     cmd->add_option("--reference", args->reference_root, "reference solutions folder");
-    cmd->add_option("--out", args->out_dir, "output folder")->required();
+    cmd->add_option("--out", args->out_dir, "output folder (required, except for add-case)");
     cmd->add_flag("--render-reference", args->use_reference,
                   "render the reference for every case instead of reading the goldens");
+    cmd->add_flag("--margins", args->margins,
+                  "print each image's metrics against its thresholds and how far each verdict is from "
+                  "turning; write <out>/<lab>/margins.json");
     cmd->add_option("--timeout", args->timeout_s, "seconds one case may take to render")
         ->check(CLI::Range(0.1, 600.0))
         ->capture_default_str();
     addCommon(cmd, &args->common);
+    // `--out` is required of `corpus` itself; CLI11 would ask it of `corpus add-case` too.
+    cmd->require_subcommand(0, 1);
+    cmd->final_callback([cmd, args] {
+        if (cmd->get_subcommands().empty() && args->out_dir.empty()) throw CLI::RequiredError("--out");
+    });
+    return cmd;
+}
+
+// `corpus add-case`: a subcommand of `corpus`, since it writes what `corpus` reads.
+CLI::App* addCorpusAddCase(CLI::App* corpus, CorpusAddCaseArgs* args) {
+    CLI::App* cmd = corpus->add_subcommand(
+        "add-case",
+        "add a case to a lab's corpus from a folder: only the student files that differ from "
+        "the reference are stored");
+    cmd->add_option("lab", args->lab, "lab id, e.g. 01-phong")->required();
+    cmd->add_option("name", args->name, "the case's name and folder, e.g. light-vector-reversed")->required();
+    cmd->add_option("--kind", args->kind,
+                    "mistake (fails goals), alternative (full marks) or broken (a status)")
+        ->required()
+        ->check(CLI::IsMember({"mistake", "alternative", "broken"}));
+    cmd->add_option("--fails", args->fails, "a mistake's goal ids: the goals whose idea it breaks");
+    cmd->add_option("--status", args->status, "the status a broken case ends with")
+        ->check(CLI::IsMember({"failed", "compile_error", "link_error", "missing", "timeout", "crashed"}));
+    cmd->add_option("--about", args->about, "what the case does, as a student would have written it")
+        ->required();
+    cmd->add_option("--from", args->from,
+                    "folder holding the lab's files (or a submission with <lab>/ in it)")
+        ->required();
+    cmd->add_option("--corpus", args->corpus_root, "folder of <lab>/cases.json (default: tests/corpus)");
+    cmd->add_option("--reference", args->reference_root, "reference solutions folder");
+    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
     return cmd;
 }
 
@@ -376,6 +410,8 @@ int main(int argc, char** argv) {
     CLI::App* goldens_cmd = addGoldens(app, &goldens);
     CorpusArgs corpus;
     CLI::App* corpus_cmd = addCorpus(app, &corpus);
+    CorpusAddCaseArgs add_case;
+    CLI::App* add_case_cmd = addCorpusAddCase(corpus_cmd, &add_case);
     BatchArgs batch;
     CLI::App* batch_cmd = addBatch(app, &batch);
     BatchWorkerArgs worker;
@@ -425,6 +461,7 @@ int main(int argc, char** argv) {
     if (serve_cmd->parsed()) return runServe(serve);
     if (watch_cmd->parsed()) return runWatch(watch);
     if (goldens_cmd->parsed()) return runGoldens(goldens);
+    if (add_case_cmd->parsed()) return runCorpusAddCase(add_case);
     if (corpus_cmd->parsed()) return runCorpus(corpus);
     if (batch_cmd->parsed()) return runBatch(batch);
     if (worker_cmd->parsed()) return runBatchWorker(worker);

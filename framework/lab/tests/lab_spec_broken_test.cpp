@@ -210,8 +210,8 @@ const std::vector<BrokenCase> kBrokenCases = {
     {"UnknownKeyListsTheAllowedOnes",
      {{"/grading/zebra", "1"}},
      "grading.zebra",
-     "unknown key (allowed here: \"flip_mean_max\", \"mismatch_max\", \"pixel_tolerance\", \"points\", "
-     "\"psnr_min_db\", \"ssim_min\")"},
+     "unknown key (allowed here: \"flip_mean_max\", \"margin_factor\", \"mismatch_max\", "
+     "\"pixel_tolerance\", \"points\", \"psnr_min_db\", \"ssim_min\")"},
     {"PassesMissing", {{"/passes", kDelete}}, "passes", "is required"},
     {"LightTypeMissing", {{"/scenes/0/lights/0/type", kDelete}}, "scenes[0].lights[0].type", "is required"},
     {"GoalTitleMissing", {{"/goals/0/title", kDelete}}, "goals[0].title", "is required"},
@@ -249,7 +249,8 @@ const std::vector<BrokenCase> kBrokenCases = {
     {"FrameworkUniformRefused",
      {{"/passes/2/uniforms/u_time", "1"}},
      "passes[2].uniforms.u_time",
-     "\"u_time\" is set by the framework (docs/student-contract.md); a lab value would replace it"},
+     "\"u_time\" is set by the framework itself (the time, the target's size, the repeat or cube face being "
+     "drawn; docs/student-contract.md): a lab value would replace it, so pick another name"},
     {"FrameworkUniformRefusedInAScene",
      {{"/scenes/0/uniforms", R"({"u_resolution": [1, 1]})"}},
      "scenes[0].uniforms.u_resolution",

@@ -1,0 +1,93 @@
+// cases.json read and checked; see corpus_cases.h.
+#include "corpus_cases.h"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "shaderlab/base/json_messages.h"
+#include "shaderlab/base/paths.h"
+#include "shaderlab/lab/json_schema_check.h"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace shaderlab {
+extern const char* const kCorpusSchemaJson;  // generated from docs/corpus.schema.json
+}
+
+namespace shaderlab::cli {
+
+const std::string& corpusSchemaText() {
+    static const std::string text = kCorpusSchemaJson;
+    return text;
+}
+
+namespace {
+
+// The checks the schema leaves to the framework, for case `i` read into `k`.
+void checkCase(const json& c, const Case& k, const std::string& path, const LabSpec& spec,
+               std::vector<std::string>* errors) {
+    if (k.kind == "mistake" && k.fails.empty())
+        errors->push_back(path + ".fails: a mistake names the goals it must fail (its learning goal)");
+    if (k.kind == "broken" && !c.contains("status"))
+        errors->push_back(path + ".status: a broken case names the status it must end with");
+    if (k.kind == "alternative" && (c.contains("fails") || c.contains("status")))
+        errors->push_back(path + ": an alternative must pass; it has no \"fails\" or \"status\"");
+    std::vector<std::string> goal_ids;
+    for (const GoalSpec& g : spec.goals) goal_ids.push_back(g.id);
+    if (c.contains("fails"))
+        for (const json& g : c["fails"])
+            if (std::find(goal_ids.begin(), goal_ids.end(), g.get<std::string>()) == goal_ids.end())
+                errors->push_back(path + ".fails: " + spec.id + " has no goal \"" + g.get<std::string>() +
+                                  "\"" + didYouMean(g.get<std::string>(), goal_ids));
+}
+
+}  // namespace
+
+bool loadCases(const fs::path& file, const LabSpec& spec, std::vector<Case>* out,
+               std::vector<std::string>* errors) {
+    const FileText t = readFile(file.string(), 1u << 20);
+    if (!t.ok) {
+        errors->push_back(file.string() + ": " + t.error);
+        return false;
+    }
+    const json doc = json::parse(t.text, nullptr, false);
+    if (doc.is_discarded()) {
+        errors->push_back(file.string() + ": not valid JSON");
+        return false;
+    }
+    static const json schema = json::parse(corpusSchemaText());
+    static const JsonSchemaChecker checker(schema);
+    const std::size_t errors_before = errors->size();
+    for (const SchemaProblem& p : checker.check(doc))
+        errors->push_back(file.string() + ": " + (p.path.empty() ? "" : p.path + ": ") + p.problem);
+    if (errors->size() != errors_before) return false;
+    if (doc["lab"] != spec.id)
+        errors->push_back(file.string() + ": lab: is " + doc["lab"].dump() + ", not " + spec.id);
+    const json& cases = doc["cases"];
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const json& c = cases[i];
+        const std::string path = file.string() + ": cases[" + std::to_string(i) + "]";
+        Case k;
+        k.name = c["name"];
+        k.kind = c["kind"];
+        k.about = c["about"];
+        k.status = c.value("status", k.kind == "mistake"       ? "failed"
+                                     : k.kind == "alternative" ? "passed"
+                                                               : "");
+        if (c.contains("fails")) k.fails = c["fails"].get<std::vector<std::string>>();
+        if (c.contains("delete")) k.remove = c["delete"].get<std::vector<std::string>>();
+        if (c.contains("diagnostic")) k.diagnostic = {{c["diagnostic"]["file"], c["diagnostic"]["line"]}};
+        k.timeout_s = c.value("timeout", 0.0);
+        checkCase(c, k, path, spec, errors);
+        std::error_code ec;
+        if (!fs::is_directory(file.parent_path() / k.name, ec) && k.remove.empty())
+            errors->push_back(path + ": no folder " + (file.parent_path() / k.name).string());
+        for (const Case& other : *out)
+            if (other.name == k.name) errors->push_back(path + ".name: \"" + k.name + "\" is listed twice");
+        out->push_back(std::move(k));
+    }
+    return errors->size() == errors_before;
+}
+
+}  // namespace shaderlab::cli
