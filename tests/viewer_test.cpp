@@ -13,8 +13,12 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/glm.hpp>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "grader/metrics/image.h"
 #include "grader/metrics/scoring.h"
@@ -446,6 +450,85 @@ TEST_F(ViewerWindow, HangingShaderTimesOutAndTheWindowStaysResponsive) {
     for (std::size_t p = f; p != std::string::npos; p = view.output.find("view: ", p + 1))
         std::sscanf(view.output.c_str() + p, "view: %d frames", &frames);
     EXPECT_GE(frames, 15) << view.output;
+}
+
+// What `check` says of a lab: its points as printed ("6.50 / 10.00") and, for each failing
+// scene that looks like a known mistake, the scene and the hint sentence.
+struct CheckSays {
+    std::string points;
+    std::vector<std::pair<std::string, std::string>> hints;
+};
+
+CheckSays readCheck(const std::string& out, const std::string& lab) {
+    CheckSays says;
+    std::smatch m;
+    if (std::regex_search(out, m, std::regex(lab + R"(\s+([0-9.]+ / [0-9.]+))"))) says.points = m[1];
+    std::istringstream lines(out);
+    std::string line, scene;
+    const std::regex failing(R"(^\s+FAIL (\S+)\s+PSNR)");
+    while (std::getline(lines, line)) {
+        if (std::regex_search(line, m, failing)) scene = m[1];
+        const std::size_t at = line.find("This looks like a known mistake:");
+        if (at != std::string::npos) says.hints.emplace_back(scene, line.substr(at));
+    }
+    return says;
+}
+
+// One voice: the window grades the lab as `check` does, at start and after each save, and prints
+// the same points and, for each failing scene, the very same known-mistake sentence.
+TEST_F(ViewerWindow, GradesTheLabAndSaysWhatCheckSays) {
+    const fs::path sub = scratch("hint");
+    fs::copy(kSource / "reference_solutions" / "02-toon", sub / "02-toon", fs::copy_options::recursive);
+    const fs::path mistake = kSource / "tests" / "corpus" / "02-toon" / "ramp-lambert-coordinate";
+    for (const fs::directory_entry& e : fs::directory_iterator(mistake))
+        fs::copy_file(e.path(), sub / "02-toon" / e.path().filename(), fs::copy_options::overwrite_existing);
+    auto check = [&] {
+        return runCommand(std::string(SHADERLAB_CLI) + " check 02-toon --submission " + sub.string() +
+                          labs() + " --no-reference --out " + scratch("hint_check").string() + " 2>&1");
+    };
+    const CommandRun before = check();
+    ASSERT_EQ(before.exit_code, 1) << before.output;
+    const CheckSays said = readCheck(before.output, "02-toon");
+    ASSERT_FALSE(said.points.empty()) << before.output;
+    ASSERT_FALSE(said.hints.empty()) << "check gives no hint for this mistake\n" << before.output;
+
+    // A minute at most: a window that never grades never settles, and would wait for ever.
+    const std::string view = "timeout 60 env " + viewCommand("view 02-toon --submission " + sub.string() +
+                                                             labs() + " --no-reference");
+    const CommandRun first = runCommand(view + " --frames 2");
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    const std::size_t grade_line = first.output.find("view: grade " + said.points + "; goals not met: ");
+    ASSERT_NE(grade_line, std::string::npos) << "check says " << said.points << "\n" << first.output;
+    EXPECT_NE(first.output.find("ramp", grade_line), std::string::npos) << "the goal the mistake misses\n"
+                                                                        << first.output;
+    for (const auto& [scene, sentence] : said.hints)
+        EXPECT_NE(first.output.find("view: scene " + scene + ": " + sentence + "\n"), std::string::npos)
+            << "check says, for scene " << scene << ":\n"
+            << sentence << "\nthe window says:\n"
+            << first.output;
+
+    // Put the reference's file back while the window runs: it grades again, and again agrees
+    // with check.
+    Background again(view + " --exit-after-reloads 1");
+    ASSERT_TRUE(again.waitFor("rendered in")) << again.output();
+    for (const fs::directory_entry& e : fs::directory_iterator(mistake)) {
+        const fs::path fixed = sub / "02-toon" / (e.path().filename().string() + ".new");
+        fs::copy_file(kSource / "reference_solutions" / "02-toon" / e.path().filename(), fixed);
+        fs::rename(fixed, sub / "02-toon" / e.path().filename());
+    }
+    const CommandRun r = again.finish();
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const CommandRun after = check();
+    const CheckSays fixed = readCheck(after.output, "02-toon");
+    ASSERT_FALSE(fixed.points.empty()) << after.output;
+    EXPECT_NE(fixed.points, said.points) << after.output;
+    const std::size_t change = r.output.find("changed; rendering again");
+    ASSERT_NE(change, std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("view: grade " + fixed.points + ";", change), std::string::npos)
+        << "check after the fix:\n"
+        << after.output << "\nthe window:\n"
+        << r.output;
+    EXPECT_EQ(r.output.find("This looks like a known mistake", change), std::string::npos) << r.output;
 }
 
 // Without a display the viewer says so and points at `watch` (exit 2), and leaves no process behind.

@@ -70,6 +70,7 @@ int runView(const ViewArgs& args) {
     }
     viewer::ViewerOptions options;
     options.spec = parsed.spec;
+    options.labs_root = fs::absolute(labs_root).lexically_normal().string();
     if (!studentLabFolder(args.submission, labs_root, args.lab, &options.submission_root)) return 2;
     if (!args.scene.empty()) {
         bool known = false;

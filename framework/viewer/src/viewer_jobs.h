@@ -1,6 +1,7 @@
-// The viewer's two background threads: renders asked of the render server (RenderQueue), and
-// judgements of the pictures that came back (Worker). Of each kind of job only the newest one
-// waits: a student saving three times quickly gets the third picture. Private to the viewer.
+// The viewer's two background threads: renders and grades asked of the render server
+// (RenderQueue), and judgements of the pictures that came back (Worker). Of each kind of job only
+// the newest one waits: a student saving three times quickly gets the third picture and the third
+// grade. Private to the viewer.
 #pragma once
 
 #include <chrono>
@@ -17,21 +18,26 @@
 
 namespace shaderlab::viewer {
 
-enum JobKind { kStudent = 0, kReference = 1 };
+enum JobKind { kStudent = 0, kReference = 1, kGrade = 2 };
 
 struct Job {
     JobKind kind = kStudent;
-    RenderRequest request;
-    std::uint64_t generation = 0;  // the files' version (student renders)
+    RenderRequest request;         // kStudent, kReference
+    GradeRequest grade;            // kGrade
+    std::uint64_t generation = 0;  // the files' version (student renders and grades)
     std::int64_t save_ns = 0;      // when the change that asked for it was saved (0: none)
 };
 
 struct Finished {
     Job job;
-    IsolatedRender result;
+    IsolatedRender result;    // kStudent, kReference
+    grader::Report report;    // kGrade: one lab, when graded
+    std::string grade_error;  // kGrade: why there is no report
 };
 
-// Renders from a thread of its own, so the window never waits on a shader.
+// Renders and grades from a thread of its own, so the window never waits on a shader. The
+// student's picture goes first (it is what the student is waiting for), then the reference's,
+// then the grade of the whole lab, as the workbench orders them.
 class RenderQueue {
   public:
     RenderQueue(RenderService* service, std::function<void()> wake)
@@ -59,7 +65,7 @@ class RenderQueue {
         out.swap(done_);
         return out;
     }
-    // What is rendering now and for how long ("" when idle).
+    // What is running now ("rendering ...", "grading ...") and for how long ("" when idle).
     std::string running(double* seconds) {
         std::lock_guard<std::mutex> lock(m_);
         if (!running_) return {};
@@ -73,22 +79,34 @@ class RenderQueue {
             Job job;
             {
                 std::unique_lock<std::mutex> lock(m_);
-                cv_.wait(lock, [this] { return stop_ || pending_[0] || pending_[1]; });
+                cv_.wait(lock, [this] { return stop_ || pending_[0] || pending_[1] || pending_[2]; });
                 if (stop_) return;
-                // The student's picture first: it is what the student is waiting for.
-                std::optional<Job>& next = pending_[kStudent] ? pending_[kStudent] : pending_[kReference];
+                std::optional<Job>& next = pending_[kStudent]     ? pending_[kStudent]
+                                           : pending_[kReference] ? pending_[kReference]
+                                                                  : pending_[kGrade];
                 job = std::move(*next);
                 next.reset();
                 running_ = true;
                 started_ = std::chrono::steady_clock::now();
-                running_what_ = (job.kind == kStudent ? "your shaders, scene " : "the reference, scene ") +
-                                job.request.scene;
+                running_what_ = job.kind == kGrade
+                                    ? "grading the lab as `check` does"
+                                    : (job.kind == kStudent ? "rendering your shaders, scene "
+                                                            : "rendering the reference, scene ") +
+                                          job.request.scene;
             }
-            IsolatedRender result = service_->render(job.request);
+            Finished f;
+            if (job.kind == kGrade) {
+                if (!service_->grade(job.grade, &f.report, &f.grade_error) || f.report.labs.empty())
+                    f.grade_error = "the lab could not be graded: " +
+                                    (f.grade_error.empty() ? std::string("no result") : f.grade_error);
+            } else {
+                f.result = service_->render(job.request);
+            }
+            f.job = std::move(job);
             {
                 std::lock_guard<std::mutex> lock(m_);
                 running_ = false;
-                done_.push_back({std::move(job), std::move(result)});
+                done_.push_back(std::move(f));
             }
             wake_();
         }
@@ -99,7 +117,7 @@ class RenderQueue {
     std::thread thread_;
     std::mutex m_;
     std::condition_variable cv_;
-    std::optional<Job> pending_[2];
+    std::optional<Job> pending_[3];
     std::vector<Finished> done_;
     bool stop_ = false;
     bool running_ = false;

@@ -1,10 +1,14 @@
 // The panel of controls on the left of the window: the view mode, the scene and camera, the
-// images of the scene and the textures a pass reads, the verdict grading would give, and the
-// keys. It reads what the other parts worked out; it judges and renders nothing itself.
+// images of the scene and the textures a pass reads, the lab's grade (points, goals not met,
+// failing scenes and their known-mistake hints, in `check`'s words), the verdict grading would
+// give this scene, and the keys. It reads what the other parts worked out; it judges, grades and
+// renders nothing itself.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
+#include "grader/base/untrusted_text.h"
+#include "grader/reports/report.h"
 #include "viewer_window.h"
 
 namespace fs = std::filesystem;
@@ -15,6 +19,10 @@ namespace {
 
 // Room at the bottom of the controls for the list of keys.
 constexpr float kKeysHeight = 172.0f;
+// At most this much of the panel for the goals and scenes the grade misses (it scrolls).
+constexpr float kGradeHeight = 190.0f;
+
+const ImVec4 kGreen(0.3f, 0.9f, 0.3f, 1), kRed(1, 0.35f, 0.3f, 1), kHint(1, 0.8f, 0.3f, 1);
 
 }  // namespace
 
@@ -62,6 +70,7 @@ void Viewer::drawControls(float width, float height) {
     const std::vector<PassImage>* mine = studentPasses();
     if (mine) drawImageList(*mine);
 
+    drawGrade();
     drawVerdict(height);
     drawKeys();
     ImGui::End();
@@ -117,14 +126,13 @@ void Viewer::drawVerdict(float height) {
     if (!judged_.empty()) {
         bool passed = true;
         for (const Judged& j : judged_) passed = passed && j.verdict.passed;
-        ImGui::TextColored(passed ? ImVec4(0.3f, 0.9f, 0.3f, 1) : ImVec4(1, 0.35f, 0.3f, 1), "scene %s: %s",
-                           student_scene_.c_str(), passed ? "PASS" : "FAIL");
+        ImGui::TextColored(passed ? kGreen : kRed, "scene %s: %s", student_scene_.c_str(),
+                           passed ? "PASS" : "FAIL");
         if (!judged_graded_view_) ImGui::TextDisabled("(this turned view is not graded)");
         ImGui::BeginChild("verdict", ImVec2(0, -kKeysHeight), false);
         for (const Judged& j : judged_) {
             const grader::MetricSet& m = j.verdict.covered;
-            ImGui::TextColored(j.verdict.passed ? ImVec4(0.3f, 0.9f, 0.3f, 1) : ImVec4(1, 0.35f, 0.3f, 1),
-                               "%s", j.verdict.passed ? "ok  " : "FAIL");
+            ImGui::TextColored(j.verdict.passed ? kGreen : kRed, "%s", j.verdict.passed ? "ok  " : "FAIL");
             ImGui::SameLine();
             ImGui::Text("%s", j.label.c_str());
             char ssim[16] = "n/a";
@@ -147,6 +155,66 @@ void Viewer::drawVerdict(float height) {
         ImGui::TextDisabled("verdict: waiting for both pictures");
     }
     if (judged_.empty()) ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), height - kKeysHeight));
+}
+
+// The lab graded as `check` grades it: the points, then what is missing, as `check` says it.
+void Viewer::drawGrade() {
+    ImGui::Separator();
+    if (!grade_) {
+        if (grade_error_.empty())
+            ImGui::TextDisabled("grade: grading the lab as `check` does");
+        else
+            ImGui::TextWrapped("%s", grade_error_.c_str());
+        return;
+    }
+    const grader::ReportLab& lab = *grade_;
+    const bool passed = lab.status == "passed";
+    ImGui::TextColored(passed ? kGreen : kRed, "lab %s: %.2f / %.2f points", lab.id.c_str(), lab.score,
+                       lab.max_score);
+    if (grading()) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("(grading again)");
+    }
+    if (!grade_error_.empty()) ImGui::TextWrapped("%s", grade_error_.c_str());
+    if (passed) return;
+    // Half of what is left above the keys, so that the scene's verdict below keeps the rest.
+    const float room = ImGui::GetContentRegionAvail().y - kKeysHeight;
+    ImGui::BeginChild("grade", ImVec2(0, std::clamp(room * 0.5f, 60.0f, kGradeHeight)), false);
+    if (lab.goals.empty())
+        ImGui::TextWrapped("%s: %s", lab.status.c_str(), grader::printableText(lab.message).c_str());
+    for (const grader::ReportGoal& g : lab.goals) {
+        if (g.met) continue;
+        ImGui::TextColored(kRed, "MISS");
+        ImGui::SameLine();
+        ImGui::TextWrapped("goal %s (%.2f)", g.title.c_str(), g.points);
+        if (!g.not_met_because.empty()) {
+            ImGui::TextWrapped("  not met because %s %s not met",
+                               grader::goalsNamed(lab, g.not_met_because).c_str(),
+                               g.not_met_because.size() > 1 ? "are" : "is");
+        } else {
+            std::string where;
+            for (const std::string& f : g.failing) where += (where.empty() ? "" : ", ") + f;
+            ImGui::TextWrapped("  not met in %s", where.c_str());
+        }
+    }
+    for (const grader::ReportScene& sc : lab.scenes) {
+        if (sc.status == "passed") continue;
+        // Picking a failing scene shows it.
+        if (ImGui::Selectable(("FAIL scene " + sc.name + "##grade").c_str(), sc.name == sceneName()))
+            for (std::size_t i = 0; i < spec_.scenes.size(); ++i)
+                if (spec_.scenes[i].name == sc.name && static_cast<int>(i) != scene_) {
+                    scene_ = static_cast<int>(i);
+                    requestStudent(0);
+                }
+        if (!sc.message.empty()) ImGui::TextWrapped("  %s", sc.message.c_str());
+        if (!sc.hint.mistake.empty()) {
+            ImGui::PushStyleColor(ImGuiCol_Text, kHint);
+            ImGui::TextWrapped("  This looks like a known mistake: %s",
+                               grader::printableText(sc.hint.about).c_str());
+            ImGui::PopStyleColor();
+        }
+    }
+    ImGui::EndChild();
 }
 
 // Which reference the verdict uses, and the keys.

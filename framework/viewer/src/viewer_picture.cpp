@@ -75,7 +75,7 @@ void Viewer::drawPicture(float x, float width, float height) {
     double busy_s = 0.0;
     const std::string busy = queue_->running(&busy_s);
     if (!busy.empty())
-        ImGui::Text("rendering %s (%.1f s)", busy.c_str(), busy_s);
+        ImGui::Text("%s (%.1f s)", busy.c_str(), busy_s);
     else
         ImGui::TextDisabled("%s", status_line_.empty() ? "starting" : status_line_.c_str());
     ImGui::Text("%s", shown_.label.c_str());

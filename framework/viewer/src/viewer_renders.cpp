@@ -1,11 +1,13 @@
 // The viewer's renders: what it asks of the render server (the student's shaders for the scene
 // and camera on screen, and the reference solution's, or the stored goldens when there is no
-// reference solution) and what it does with the answers. It draws nothing and judges nothing.
+// reference solution; and the whole lab graded as `check` grades it) and what it does with the
+// answers. It draws nothing and judges nothing.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
+#include "grader/base/untrusted_text.h"
 #include "grader/reports/report.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/live/render_outcome.h"
@@ -80,6 +82,48 @@ void Viewer::requestReference() {
     queue_->submit(std::move(job));
 }
 
+// The lab as `check` grades it, against the same reference the window compares with.
+void Viewer::requestGrade() {
+    Job job;
+    job.kind = kGrade;
+    job.grade.submission_root = opt_.submission_root;
+    job.grade.labs_root = opt_.labs_root;
+    job.grade.reference_root = opt_.reference_root;
+    job.grade.limits = opt_.grade_limits;
+    job.generation = generation_;
+    grade_asked_ = generation_;
+    queue_->submit(std::move(job));
+}
+
+// One line for the grade, and one for each failing scene that looks like a known mistake, in
+// the words `check` uses, so that a script (or a test) reads the same verdict in both.
+void Viewer::onGrade(Finished& f) {
+    grade_done_ = f.job.generation;
+    grade_error_ = f.grade_error;
+    if (!grade_error_.empty()) {
+        std::printf("view: %s\n", grade_error_.c_str());
+        std::fflush(stdout);
+        return;
+    }
+    grade_ = std::move(f.report.labs.front());
+    const grader::ReportLab& lab = *grade_;
+    std::string missed;
+    for (const grader::ReportGoal& g : lab.goals)
+        if (!g.met) missed += (missed.empty() ? "" : ", ") + g.id;
+    std::printf("view: grade %.2f / %.2f; ", lab.score, lab.max_score);
+    if (lab.goals.empty())
+        std::printf("%s\n", lab.status.c_str());
+    else if (missed.empty())
+        std::printf("every goal met\n");
+    else
+        std::printf("goals not met: %s\n", missed.c_str());
+    for (const grader::ReportScene& s : lab.scenes)
+        if (s.status != "passed" && !s.hint.mistake.empty())
+            std::printf("view: scene %s: This looks like a known mistake: %s\n", s.name.c_str(),
+                        grader::printableText(s.hint.about).c_str());
+    std::fflush(stdout);
+}
+
 void Viewer::onStudent(const Finished& f) {
     const IsolatedRender& r = f.result;
     got_first_result_ = true;
@@ -122,6 +166,8 @@ void Viewer::takeResults() {
     for (Finished& f : queue_->take()) {
         if (f.job.kind == kStudent) {
             onStudent(f);
+        } else if (f.job.kind == kGrade) {
+            onGrade(f);
         } else {
             reference_error_.clear();
             if (f.result.status != IsolatedStatus::Ok)

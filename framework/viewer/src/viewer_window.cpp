@@ -163,7 +163,8 @@ void Viewer::closeWindow() {
     glfwTerminate();
 }
 
-// A look at the student's folder, at most every 20 ms: a saved file renders the scene again.
+// A look at the student's folder, at most every 20 ms: a saved file renders the scene and grades
+// the lab again.
 void Viewer::pollFolder(Clock::time_point now) {
     if (now - last_poll_ > std::chrono::milliseconds(20)) {
         last_poll_ = now;
@@ -175,6 +176,7 @@ void Viewer::pollFolder(Clock::time_point now) {
             std::fflush(stdout);
             const std::int64_t mtime = watch_->changedMtimeNs();
             requestStudent(mtime > 0 ? mtime : nowNs());
+            requestGrade();
         }
     }
 }
@@ -194,6 +196,7 @@ int Viewer::run() {
                     (fs::path(opt_.submission_root) / spec_.id).string().c_str());
         std::fflush(stdout);
         requestStudent(0);
+        requestGrade();
         int frames_after_first = 0;
         std::vector<double> frame_ms;
         bool screenshot_due = false;
@@ -224,10 +227,9 @@ int Viewer::run() {
             glClear(GL_COLOR_BUFFER_BIT);
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-            // Scripts want both pictures: count frames once the reference is in too.
-            // and judged.
-            const bool settled =
-                got_first_result_ && (opt_.reference_root.empty() || reference_) && !analysing();
+            // Scripts want both pictures, judged, and the grade: count frames once all are in.
+            const bool settled = got_first_result_ && (opt_.reference_root.empty() || reference_) &&
+                                 !analysing() && !grading();
             if (settled) ++frames_after_first;
             const bool done_frames = opt_.frames > 0 && frames_after_first >= opt_.frames;
             const bool done_reloads =

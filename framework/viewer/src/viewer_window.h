@@ -1,7 +1,8 @@
 // The student's window as one class, Viewer, whose parts live in files of their own: the main
-// loop and the window (viewer_window.cpp), renders asked and taken (viewer_renders.cpp), the
-// image on screen and its judgement (viewer_shown.cpp), keys and mouse (viewer_input.cpp), the
-// panel of controls and verdict (viewer_panels.cpp) and the picture (viewer_picture.cpp).
+// loop and the window (viewer_window.cpp), renders and grades asked and taken
+// (viewer_renders.cpp), the image on screen and its judgement (viewer_shown.cpp), keys and mouse
+// (viewer_input.cpp), the panel of controls, verdict and grade (viewer_panels.cpp) and the picture
+// (viewer_picture.cpp).
 // Private to the viewer; runViewer (viewer.h) is its only way in.
 #pragma once
 
@@ -86,8 +87,11 @@ class Viewer {
     // viewer_renders.cpp
     void requestStudent(std::int64_t save_ns);
     void requestReference();
+    void requestGrade();
     void takeResults();
     void onStudent(const Finished& f);
+    void onGrade(Finished& f);
+    bool grading() const { return !grade_done_ || *grade_done_ != grade_asked_; }
     std::string changeScene(int delta);
     std::string sceneName() const { return spec_.scenes[static_cast<std::size_t>(scene_)].name; }
     const std::vector<PassImage>* studentPasses() const;
@@ -108,6 +112,7 @@ class Viewer {
     void drawControls(float width, float height);
     void drawImageList(const std::vector<PassImage>& mine);
     void drawVerdict(float height);
+    void drawGrade();
     void drawKeys();
     // viewer_picture.cpp
     void drawPicture(float x, float width, float height);
@@ -147,6 +152,13 @@ class Viewer {
     std::map<std::string, std::shared_ptr<const std::vector<PassImage>>> goldens_;  // by scene
     std::map<std::string, std::string> golden_errors_;
     std::map<std::string, grader::Image> files_;  // input files, by path
+
+    // The lab graded as `check` grades it: the newest grade asked (by the files' version) and
+    // the last one that came back.
+    std::uint64_t grade_asked_ = 0;
+    std::optional<std::uint64_t> grade_done_;
+    std::optional<grader::ReportLab> grade_;
+    std::string grade_error_;
 
     // Derived, recomputed when `dirty_` is set.
     bool dirty_ = true;
