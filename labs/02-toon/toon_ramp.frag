@@ -21,7 +21,8 @@ uniform sampler1D u_ramp;           // ramp.png: diffuse ramp, RGB
 uniform sampler1D u_specular_ramp;  // specular_ramp.png: highlight ramp, grey (use .r)
 uniform sampler1D u_edge_ramp;      // edge_ramp.png: silhouette ramp, grey (use .r)
 
-uniform float u_diffuse;    // weight of the diffuse term (some scenes set 0 to show the highlight alone)
+uniform float u_diffuse;    // weight of the diffuse term (0 to show the highlight alone; 100 in the
+                            // silhouette scenes, which drives the colour past white to show the edges alone)
 uniform float u_specular;   // weight of the highlight (0 in scenes about diffuse light or edges)
 uniform float u_shininess;  // the Blinn exponent
 uniform float u_edge;       // 1: darken silhouettes; 0: don't (mix(1.0, edge, u_edge))

@@ -11,8 +11,11 @@
 //   stripe = smoothstep(-softness, softness, sin(2 pi phase))
 //   colour = mix(background, stripe colour, stripe)
 
-in vec2 v_uv;
+in vec2 v_uv;  // (s, t) of this texel
+// (gl_FragCoord.xy / u_resolution is the same (s, t) in this pass. If you use that instead, delete
+// the v_uv line above, or the grader warns that it is never used.)
 
+uniform vec2 u_resolution;   // the target's size in texels, 256 x 256
 uniform float u_time;        // seconds, fixed per graded scene
 uniform vec2 u_frequency;    // stripes across the texture along s and t (whole numbers, so it tiles)
 uniform vec2 u_velocity;     // how far the pattern travels per second, in texture units

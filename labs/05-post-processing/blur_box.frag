@@ -2,7 +2,10 @@
 // Lab 05, step 3: box blur. Each output pixel is the plain average of the (2r+1) x (2r+1) scene
 // texels centred on it, r = u_box_radius (it changes from scene to scene).
 
-in vec2 v_uv;
+in vec2 v_uv;  // (0, 0) bottom-left .. (1, 1) top-right: the centre of this fragment's texel
+// (Reading by texelFetch from ivec2(gl_FragCoord.xy) instead? Clamp every index to the texture,
+// as the README says, and delete this line and what reads it: the grader warns about an input a
+// shader never uses.)
 
 uniform sampler2D u_scene;
 uniform int u_box_radius;  // r, in texels

@@ -2,7 +2,10 @@
 // Lab 05, step 4: Gaussian blur. Like the box blur, but the tap at offset (x, y) texels weighs
 // w(x, y) = exp(-(x^2 + y^2) / (2 sigma^2)), so near texels count more than far ones.
 
-in vec2 v_uv;
+in vec2 v_uv;  // (0, 0) bottom-left .. (1, 1) top-right: the centre of this fragment's texel
+// (Reading by texelFetch from ivec2(gl_FragCoord.xy) instead? Clamp every index to the texture,
+// as the README says, and delete this line and what reads it: the grader warns about an input a
+// shader never uses.)
 
 uniform sampler2D u_scene;
 uniform int u_gauss_radius;   // r, in texels: taps from -r to r on each axis

@@ -30,13 +30,13 @@ void main() {
     vec3 n = vec3(0.0, 0.0, 1.0);
 
     vec3 sum = vec3(0.0);
-    const float step = 2.0 / float(kSkySize);
+    const float texel_size = 2.0 / float(kSkySize);
     for (int face = 0; face < 6; ++face) {
         for (int j = 0; j < kSkySize; ++j) {
             for (int i = 0; i < kSkySize; ++i) {
-                // Texel (i, j) spans [u0, u0 + step] x [v0, v0 + step] of the face plane.
-                float u0 = float(i) * step - 1.0;
-                float v0 = float(j) * step - 1.0;
+                // Texel (i, j) covers [u0, u0 + texel_size] x [v0, v0 + texel_size] on the face.
+                float u0 = float(i) * texel_size - 1.0;
+                float v0 = float(j) * texel_size - 1.0;
 
                 // TODO(student): the texel's direction w (through its centre), its radiance
                 // texture(u_sky_small, w).rgb, its solid angle, and add

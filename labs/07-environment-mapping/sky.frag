@@ -2,6 +2,8 @@
 // 07-environment-mapping, the sky's fragment stage: the environment seen through each pixel.
 
 in vec2 v_ndc;  // this pixel's x, y in normalised device coordinates (-1..1)
+// (Building the ray in sky.vert from u_view and u_projection instead, as the README allows? Then
+// pass the ray in place of v_ndc, here and in sky.vert, so that no input is left unused.)
 
 uniform mat4 u_inverse_view_projection;  // clip space back to world space
 uniform vec3 u_camera_position;

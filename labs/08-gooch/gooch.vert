@@ -1,6 +1,7 @@
 #version 330 core
 // 08-gooch, pass 1 (vertex stage): world-space position and normal for per-fragment shading.
-// Nothing here is new: it is the vertex stage of lab 01.
+// Nothing here is new: it is the vertex stage of lab 01. It is done, but it is one of your files:
+// it is graded with your submission, and you may change it (to shade in eye space, say).
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

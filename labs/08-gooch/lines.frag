@@ -5,6 +5,9 @@
 //   silhouettes: the distance to the surface jumps between neighbouring pixels (u_depth)
 //   creases:     the surface normal turns sharply between neighbouring pixels (u_normal)
 // Read labs/08-gooch/README.md first.
+// (Reading texels with texelFetch at ivec2(gl_FragCoord.xy) + offset instead of uv offsets? Then
+// clamp every address to 0..textureSize(u_depth, 0) - 1: texelFetch outside the texture returns
+// undefined values. If v_uv then ends up unused, delete its declaration.)
 // (u_k_blue, u_k_yellow, u_alpha, u_beta and u_specular in lab.json belong to pass 1, gooch.frag.)
 
 in vec2 v_uv;

@@ -19,7 +19,9 @@ out vec3 v_color;
 
 void main() {
     // TODO(student): particle gl_VertexID's texel, and its position and velocity from
-    // u_positions and u_velocities (texelFetch reads one texel by its integer coordinates).
+    // u_positions and u_velocities (texelFetch reads one texel by its integer coordinates, and
+    // ignores the wrap mode: an index outside the texture reads garbage, so make sure (x, y) =
+    // (column, row) lies in it).
     vec3 position = vec3(0.5);
     vec3 velocity = vec3(0.0);
 

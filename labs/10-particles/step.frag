@@ -12,6 +12,10 @@
 // pass; they are named here only because the framework warns about a scene uniform that a pass's
 // shaders never mention.)
 
+// No `in vec2 v_uv;` here: texelFetch at ivec2(gl_FragCoord.xy) needs no texture coordinate, and
+// the grader warns about an input a shader never reads. If you would rather sample with
+// texture(u, v_uv) (shared/fullscreen.vert hands v_uv on, at this texel's centre), declare it.
+
 uniform sampler2D u_state_position;  // xyz: position, w: 1 (unused)
 uniform sampler2D u_state_velocity;  // xyz: velocity, w: 1 (unused)
 
@@ -26,15 +30,17 @@ out vec4 o_velocity;
 
 void main() {
     // TODO(student): read this particle's position and velocity. This fragment's pixel IS the
-    // particle's texel: gl_FragCoord.xy is the pixel's centre, (i + 0.5, j + 0.5).
+    // particle's texel: gl_FragCoord.xy is the pixel's centre, (i + 0.5, j + 0.5), so
+    // ivec2(gl_FragCoord.xy) is always a texel of the state (texelFetch needs no clamp here).
     vec3 x = vec3(0.5);
     vec3 v = vec3(0.0);
 
     // TODO(student): the acceleration a(x), then one step of semi-implicit Euler:
     //     v' = v + dt a(x),   x' = x + dt v'   (the position moves with the NEW velocity)
 
-    // TODO(student): the walls. For each coordinate that left [0, 1]: put it back on the wall,
-    // and reflect that component of the velocity, scaled by the restitution u_restitution.
+    // TODO(student): the walls, after the step (they test the NEW position). For each coordinate
+    // that left [0, 1]: put it back on the wall, and reflect that component of the velocity,
+    // scaled by the restitution u_restitution.
 
     o_position = vec4(x, 1.0);
     o_velocity = vec4(v, 1.0);

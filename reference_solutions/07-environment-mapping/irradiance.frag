@@ -37,12 +37,12 @@ void main() {
     vec3 n = normalize(faceDirection(u_cube_face, 2.0 * v_uv.x - 1.0, 2.0 * v_uv.y - 1.0));
 
     vec3 sum = vec3(0.0);
-    const float step = 2.0 / float(kSkySize);
+    const float texel_size = 2.0 / float(kSkySize);
     for (int face = 0; face < 6; ++face) {
         for (int j = 0; j < kSkySize; ++j) {
             for (int i = 0; i < kSkySize; ++i) {
-                float u0 = float(i) * step - 1.0, u1 = u0 + step;
-                float v0 = float(j) * step - 1.0, v1 = v0 + step;
+                float u0 = float(i) * texel_size - 1.0, u1 = u0 + texel_size;
+                float v0 = float(j) * texel_size - 1.0, v1 = v0 + texel_size;
                 // The texel's exact solid angle, by inclusion-exclusion of four corner rectangles.
                 float solid_angle = cornerSolidAngle(u1, v1) - cornerSolidAngle(u0, v1) -
                                     cornerSolidAngle(u1, v0) + cornerSolidAngle(u0, v0);

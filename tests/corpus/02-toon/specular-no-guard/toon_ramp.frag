@@ -1,0 +1,54 @@
+#version 330 core
+// 02-toon, task 2 (pass "ramp"): toon shading through 1D ramp textures, as games do it.
+// The ramps are tiny images (8x1 texels) the lab binds with nearest filtering and
+// clamp-to-edge wrapping; your job is to compute where to look them up:
+//   diffuse:   base colour * light colour * ramp(s),   s = n.l remapped from [-1, 1] to [0, 1]
+//   highlight: light colour * specular_ramp(t),        t = max(n.h, 0)^shininess,
+//              h = the Blinn half vector between l and v; only where n.l > 0
+//   edges:     the sum of both, times edge_ramp(max(n.v, 0))  (dark where the surface turns away)
+// Read labs/02-toon/README.md first.
+
+in vec3 v_world_position;
+in vec3 v_world_normal;
+
+uniform vec3 u_camera_position;                // eye position, world space
+uniform int u_light_count;                     // how many entries below are in use
+uniform vec4 u_light_position[SL_MAX_LIGHTS];  // w = 1: point light at xyz; w = 0: xyz points toward the light
+uniform vec3 u_light_color[SL_MAX_LIGHTS];     // colour times intensity
+uniform vec4 u_base_color;                     // the material's colour
+
+uniform sampler1D u_ramp;           // ramp.png: diffuse ramp, RGB
+uniform sampler1D u_specular_ramp;  // specular_ramp.png: highlight ramp, grey (use .r)
+uniform sampler1D u_edge_ramp;      // edge_ramp.png: silhouette ramp, grey (use .r)
+
+uniform float u_diffuse;    // weight of the diffuse term (some scenes set 0 to show the highlight alone)
+uniform float u_specular;   // weight of the highlight (0 in scenes about diffuse light or edges)
+uniform float u_shininess;  // the Blinn exponent
+uniform float u_edge;       // 1: darken silhouettes; 0: don't (mix(1.0, edge, u_edge))
+
+out vec4 o_color;
+
+void main() {
+    vec3 n = normalize(v_world_normal);
+    vec3 v = normalize(u_camera_position - v_world_position);
+
+    vec3 color = vec3(0.0);
+    for (int i = 0; i < u_light_count; ++i) {
+        vec4 lp = u_light_position[i];
+        vec3 l = normalize(lp.xyz - v_world_position * lp.w);
+        float n_dot_l = dot(n, l);
+
+        float s = 0.5 * n_dot_l + 0.5;
+        color += u_diffuse * u_light_color[i] * u_base_color.rgb * texture(u_ramp, s).rgb;
+
+        // The highlight from the half vector alone: max(n.h, 0) already hides the back, I thought.
+        vec3 h = normalize(l + v);
+        float t = pow(max(dot(n, h), 0.0), u_shininess);
+        color += u_specular * u_light_color[i] * texture(u_specular_ramp, t).r;
+    }
+
+    float edge = texture(u_edge_ramp, max(dot(n, v), 0.0)).r;
+    color *= mix(1.0, edge, u_edge);
+
+    o_color = vec4(color, 1.0);
+}
