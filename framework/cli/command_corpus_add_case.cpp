@@ -216,12 +216,8 @@ fs::path labFolder(const fs::path& from, const LabSpec& spec) {
 
 int runCorpusAddCase(const CorpusAddCaseArgs& args) {
     std::string labs_root;
-    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
-    const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / args.lab).string());
-    if (!parsed.ok) {
-        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
-        return 2;
-    }
+    LabSpecResult parsed;
+    if (!loadCommandLab(args.common, args.lab, &labs_root, &parsed)) return 2;
     const LabSpec& spec = parsed.spec;
     const fs::path course = fs::path(labs_root).parent_path();
     const fs::path corpus_lab =

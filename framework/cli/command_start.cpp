@@ -33,18 +33,22 @@ bool resolveLabsRoot(const CommonOptions& common, std::string* labs_root) {
     return true;
 }
 
+bool loadCommandLab(const CommonOptions& common, const std::string& id, std::string* labs_root,
+                    LabSpecResult* out) {
+    if (!resolveLabsRoot(common, labs_root)) return false;
+    *out = parseLabSpec((fs::path(*labs_root) / id).string());
+    for (const std::string& e : out->errors) std::cerr << e << "\n";
+    return out->ok;
+}
+
 std::string workRoot(const std::string& labs_root) {
     return (fs::path(labs_root).parent_path() / "work").string();
 }
 
 int runStart(const StartArgs& args) {
     std::string labs_root;
-    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
-    const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / args.lab).string());
-    if (!parsed.ok) {
-        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
-        return 2;
-    }
+    LabSpecResult parsed;
+    if (!loadCommandLab(args.common, args.lab, &labs_root, &parsed)) return 2;
     const fs::path into = fs::path(args.into.empty() ? workRoot(labs_root) : args.into) / args.lab;
     std::error_code ec;
     if (!args.force) {

@@ -62,12 +62,8 @@ int runView(const ViewArgs& args) {
     return 2;
 #else
     std::string labs_root;
-    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
-    const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / args.lab).string());
-    if (!parsed.ok) {
-        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
-        return 2;
-    }
+    LabSpecResult parsed;
+    if (!loadCommandLab(args.common, args.lab, &labs_root, &parsed)) return 2;
     viewer::ViewerOptions options;
     options.spec = parsed.spec;
     options.labs_root = fs::absolute(labs_root).lexically_normal().string();
@@ -102,12 +98,8 @@ int runView(const ViewArgs& args) {
 
 int runServe(const ServeArgs& args) {
     std::string labs_root;
-    if (!resolveLabsRoot(args.common, &labs_root)) return 2;
-    const LabSpecResult parsed = parseLabSpec((fs::path(labs_root) / args.lab).string());
-    if (!parsed.ok) {
-        for (const std::string& e : parsed.errors) std::cerr << e << "\n";
-        return 2;
-    }
+    LabSpecResult parsed;
+    if (!loadCommandLab(args.common, args.lab, &labs_root, &parsed)) return 2;
     serve::ServeOptions options;
     serve::WorkbenchOptions& w = options.workbench;
     w.spec = parsed.spec;

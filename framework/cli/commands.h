@@ -22,6 +22,10 @@ struct CommonOptions {
 // The labs folder a command works on: --labs, else $SHADERLAB_LABS, else the course found from
 // the current directory upward. Prints why and returns false when there is none.
 bool resolveLabsRoot(const CommonOptions& common, std::string* labs_root);
+// resolveLabsRoot, then lab `id` in it parsed into `out`; false, with the lab's errors printed,
+// when there is no labs folder or the lab does not parse.
+bool loadCommandLab(const CommonOptions& common, const std::string& id, std::string* labs_root,
+                    LabSpecResult* out);
 // Where students work: <course>/work, beside labs/.
 std::string workRoot(const std::string& labs_root);
 
