@@ -128,12 +128,18 @@ LabHints collectHints(const std::vector<MistakeRun>& runs, const std::vector<std
 // newer Mesa never fails a user's check of the course.
 std::string compareHints(const LabHints& stored, const LabHints& fresh) {
     const bool same_renderer = stored.renderer.empty() || stored.renderer == fresh.renderer;
-    if (stored.factor != fresh.factor || stored.hints.size() != fresh.hints.size())
+    // Another renderer may tell apart two mistakes' pictures that the stored one drew alike (and
+    // left out), so there every stored picture must have its fresh twin, and more fresh ones are
+    // no fault; on the same renderer the sets are equal.
+    if (stored.factor != fresh.factor || (same_renderer && stored.hints.size() != fresh.hints.size()))
         return std::to_string(stored.hints.size()) + " stored pictures, " +
                std::to_string(fresh.hints.size()) + " fresh";
     for (std::size_t i = 0; i < stored.hints.size(); ++i) {
         const MistakeHint& a = stored.hints[i];
-        const MistakeHint& b = fresh.hints[i];
+        const auto twin = std::find_if(fresh.hints.begin(), fresh.hints.end(),
+                                       [&](const MistakeHint& h) { return h.file == a.file; });
+        if (twin == fresh.hints.end()) return a.file + " is no longer drawn (no fresh picture of it)";
+        const MistakeHint& b = same_renderer ? fresh.hints[i] : *twin;
         if (a.file != b.file || a.about != b.about || a.picture.width != b.picture.width ||
             a.picture.height != b.picture.height)
             return a.file + " differs from " + b.file;

@@ -134,11 +134,27 @@ void LabRunner::drawFaces(const PassRun& run, int write) {
     const MaterialWarning scene_warning = [&](const std::string& message) {
         warnOnce("../" + ctx.spec->file, message);
     };
+    // An attachment no output of the program writes is left as it was (its draw buffer is
+    // GL_NONE while the pass draws): GL leaves it undefined otherwise, and drivers differ (Mesa
+    // 22's llvmpipe writes garbage, Mesa 25's keeps the old values), which would make a grade
+    // depend on the machine. The framework's warning says which attachment it is.
+    std::vector<GLenum> all_buffers, drawn_buffers;
+    for (std::size_t i = 0; i < tspec.attachments.size(); ++i) {
+        const GLenum a = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+        const bool written = !prog.outputsKnown() || std::any_of(prog.outputs().begin(), prog.outputs().end(),
+                                                                 [&](const FragmentOutput& o) {
+                                                                     return o.location == static_cast<int>(i);
+                                                                 });
+        all_buffers.push_back(a);
+        drawn_buffers.push_back(written ? a : GL_NONE);
+    }
+    const bool masked = drawn_buffers != all_buffers;
     for (int face = 0; face < target.faces(); ++face) {
         glBindFramebuffer(GL_FRAMEBUFFER, target.fbos.at({write, face}));
         glViewport(0, 0, tspec.width, tspec.height);
         applyState(pass.state, tspec.format == TargetFormat::SRGB8, program_point_size);
         clearTarget(pass.state, target.depth != DepthMode::None);
+        if (masked) glDrawBuffers(static_cast<GLsizei>(drawn_buffers.size()), drawn_buffers.data());
         setFramework(prog, file, "u_cube_face", GL_INT, [&](GLint l) { glUniform1i(l, face); });
         if (pass.draw == DrawKind::Fullscreen) {
             drawMesh(run, scene_warning, fullscreen_.get(), glm::mat4(1.0f), kDefaultMaterial);
@@ -161,6 +177,7 @@ void LabRunner::drawFaces(const PassRun& run, int write) {
                 if (unculled) glEnable(GL_CULL_FACE);
             }
         }
+        if (masked) glDrawBuffers(static_cast<GLsizei>(all_buffers.size()), all_buffers.data());
     }
 }
 

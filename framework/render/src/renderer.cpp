@@ -165,7 +165,8 @@ bool LabRunner::buildPrograms() {
 }
 
 // Fragment outputs and the target's attachments must meet: an output no attachment receives is
-// lost without a word from OpenGL, and an attachment no output writes keeps garbage.
+// lost without a word from OpenGL, and an attachment no output writes would be undefined (drawFaces leaves it
+// as it was).
 void LabRunner::checkOutputs(const ShaderProgram& prog, const PassSpec& pass, const TargetSpec& target) {
     if (!prog.outputsKnown()) return;
     const std::string& file = pass.program.fragment;
@@ -184,7 +185,8 @@ void LabRunner::checkOutputs(const ShaderProgram& prog, const PassSpec& pass, co
     for (std::size_t i = 0; i < target.attachments.size(); ++i)
         if (!written.count(static_cast<int>(i)))
             warnOnce(file, "no output writes attachment '" + target.attachments[i] + "' of target '" +
-                               target.name + "' (name it o_" + target.attachments[i] + ")");
+                               target.name + "', so it keeps what it held (name it o_" +
+                               target.attachments[i] + ")");
 }
 
 // A pass runs only when an image the caller keeps depends on it: the graded passes, what they
