@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_run.h"
 #include "grader/metrics/image.h"
 
 namespace fs = std::filesystem;
@@ -20,20 +21,10 @@ namespace {
 
 const fs::path kRoot = SHADERLAB_SOURCE_DIR;
 
-struct CliResult {
-    int exit_code = -1;
-    std::string output;
-};
+using CliResult = shaderlab_test::CliRun;
 
 CliResult run(const std::string& args) {
-    CliResult r;
-    FILE* pipe = popen((std::string(SHADERLAB_CLI) + " " + args + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
-    const int status = pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return shaderlab_test::runShell(std::string(SHADERLAB_CLI) + " " + args);
 }
 
 fs::path scratch(const std::string& name) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "shaderlab/lab/json_schema_check.h"
 
 namespace fs = std::filesystem;
@@ -25,21 +26,9 @@ namespace {
 const fs::path kRoot = SHADERLAB_SOURCE_DIR;
 const char* const kLab = "08-gooch";
 
-struct CliRun {
-    int code = -1;
-    std::string output;
-};
+using shaderlab_test::CliRun;
 
-CliRun run(const std::string& cmd) {
-    CliRun r;
-    FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
-    const int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+CliRun run(const std::string& cmd) { return shaderlab_test::runShell(cmd); }
 
 std::string readText(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -90,7 +79,7 @@ class CorpusAddCase : public ::testing::Test {
 
     // A refusal: exit code 2, the reason said, nothing written.
     void expectRefused(const CliRun& r, const std::string& name, const std::string& reason) const {
-        EXPECT_EQ(r.code, 2) << r.output;
+        EXPECT_EQ(r.exit_code, 2) << r.output;
         EXPECT_NE(r.output.find(reason), std::string::npos) << r.output;
         EXPECT_EQ(readText(cases()), before_);
         EXPECT_FALSE(fs::exists(corpus() / name)) << name;
@@ -112,7 +101,7 @@ class CorpusAddCase : public ::testing::Test {
 TEST_F(CorpusAddCase, StoresOnlyTheFilesThatDifferAndAppendsOneCaseLine) {
     changeLine("gooch.frag", "u_beta * k_d", "0.5 * k_d");
     const CliRun r = addCase("beta-halved", "--kind mistake --fails tone --about \"beta replaced by 0.5\"");
-    ASSERT_EQ(r.code, 0) << r.output;
+    ASSERT_EQ(r.exit_code, 0) << r.output;
     // The changed file alone, as it is in `from`.
     std::vector<std::string> stored;
     for (const auto& e : fs::recursive_directory_iterator(corpus() / "beta-halved"))
@@ -137,7 +126,7 @@ TEST_F(CorpusAddCase, StoresOnlyTheFilesThatDifferAndAppendsOneCaseLine) {
 TEST_F(CorpusAddCase, ABrokenCaseDeletesTheFilesItLacks) {
     fs::remove(from() / "lines.frag");
     const CliRun r = addCase("no-lines", "--kind broken --status missing --about \"no lines.frag\"");
-    ASSERT_EQ(r.code, 0) << r.output;
+    ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_FALSE(fs::exists(corpus() / "no-lines"));  // nothing differs: no folder
     const json doc = json::parse(readText(cases()));
     EXPECT_EQ(doc["cases"].back(), json::parse(R"({"name": "no-lines", "kind": "broken", "status": "missing",
@@ -151,13 +140,13 @@ TEST_F(CorpusAddCase, RefusesWhenNoFileDiffers) {
 TEST_F(CorpusAddCase, RefusesANameTaken) {
     changeLine("gooch.frag", "u_beta * k_d", "0.5 * k_d");
     const CliRun taken = addCase("raw-depth", "--kind mistake --fails tone --about x");
-    EXPECT_EQ(taken.code, 2) << taken.output;
+    EXPECT_EQ(taken.exit_code, 2) << taken.output;
     EXPECT_NE(taken.output.find("has a case \"raw-depth\" already"), std::string::npos) << taken.output;
     EXPECT_EQ(readText(corpus() / "raw-depth" / "lines.frag"),
               readText(kRoot / "tests/corpus/08-gooch/raw-depth/lines.frag"));
     fs::create_directories(corpus() / "left-over");
     const CliRun r = addCase("left-over", "--kind mistake --fails tone --about x");
-    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("left-over exists already"), std::string::npos) << r.output;
     EXPECT_EQ(readText(cases()), before_);
 }
@@ -219,7 +208,7 @@ TEST(CorpusFormat, EveryBundledCasesFileIsValidByTheSchema) {
             run(std::string(SHADERLAB_CLI) + " corpus add-case " + id +
                 " probe --kind alternative --about probe --from " +
                 (kRoot / "reference_solutions" / id).string() + " --labs " + (kRoot / "labs").string());
-        EXPECT_EQ(r.code, 2) << r.output;
+        EXPECT_EQ(r.exit_code, 2) << r.output;
         EXPECT_NE(r.output.find("there is no case to add"), std::string::npos) << id << ": " << r.output;
     }
     EXPECT_GE(files, 11);

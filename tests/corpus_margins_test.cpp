@@ -16,6 +16,8 @@
 #include <set>
 #include <string>
 
+#include "cli_run.h"
+
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
@@ -24,21 +26,9 @@ namespace {
 const fs::path kRoot = SHADERLAB_SOURCE_DIR;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-struct CliRun {
-    std::string output;
-    int exit_code = -1;
-};
+using shaderlab_test::CliRun;
 
-CliRun run(const std::string& cmd) {
-    CliRun r;
-    FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
-    const int status = pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+CliRun run(const std::string& cmd) { return shaderlab_test::runShell(cmd); }
 
 json readJson(const fs::path& file) {
     std::ifstream in(file);

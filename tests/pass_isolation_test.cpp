@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_run.h"
+
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
@@ -21,15 +23,7 @@ namespace {
 
 const fs::path kRoot = SHADERLAB_SOURCE_DIR;
 
-std::string run(const std::string& cmd) {
-    std::string output;
-    FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-    if (!pipe) return output;
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, pipe)) output += buf;
-    pclose(pipe);
-    return output;
-}
+std::string run(const std::string& cmd) { return shaderlab_test::runShell(cmd).output; }
 
 // first.frag draws a gradient with values above 1 (compared in the hdr range, stored as .hdr);
 // second.frag scales what it reads.
