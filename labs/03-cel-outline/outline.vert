@@ -16,7 +16,7 @@ uniform mat4 u_projection;
 uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model))): object normals to world space
 uniform vec2 u_resolution;     // target size in pixels
 
-uniform float u_outline_width;  // the outline's width in PIXELS (4 in lab.json)
+uniform float u_outline_width;  // the outline's width in PIXELS (4 in most scenes; some set others)
 
 void main() {
     vec4 clip = u_model_view_projection * vec4(a_position, 1.0);
