@@ -1,6 +1,6 @@
 // A goal that rests on others (lab.json "depends_on") on a real lab: 02-toon's teapot goal
-// declared to rest on the ramp, highlight and edge goals, graded for a mistake that only the ramp
-// shows. The teapot goal is then not met because of the ramp, and says so, in report.json and in
+// declared to rest on the ramp, highlight and edge goals, graded for a mistake that only the edges
+// show. The teapot goal is then not met because of the edges, and says so, in report.json and in
 // the terminal; nothing else changes.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -40,11 +40,11 @@ TEST(GoalDependencies, AGoalRestingOnAMissedOneIsNotMetBecauseOfIt) {
     for (json& g : spec["goals"])
         if (g["id"] == "together") g["depends_on"] = {"ramp", "highlight", "edges"};
     std::ofstream(labs / "02-toon" / "lab.json") << spec.dump(2);
-    // A mistake of the ramp alone: the teapot (one light) still matches on its own.
+    // A mistake of the edges alone (n.l instead of n.v): the other goals stay met.
     const fs::path submission = tmp / "submission";
     fs::create_directories(submission / "02-toon");
     fs::copy(kRoot / "reference_solutions" / "02-toon", submission / "02-toon", fs::copy_options::recursive);
-    fs::copy_file(kRoot / "tests" / "corpus" / "02-toon" / "first-light-only" / "toon_ramp.frag",
+    fs::copy_file(kRoot / "tests" / "corpus" / "02-toon" / "edges-on-n-dot-l" / "toon_ramp.frag",
                   submission / "02-toon" / "toon_ramp.frag", fs::copy_options::overwrite_existing);
 
     const std::string out =
@@ -54,21 +54,23 @@ TEST(GoalDependencies, AGoalRestingOnAMissedOneIsNotMetBecauseOfIt) {
     ASSERT_TRUE(report.is_object()) << out;
     const json& lab = report["labs"][0];
     const json* together = goal(lab, "together");
-    const json* ramp = goal(lab, "ramp");
-    ASSERT_TRUE(together && ramp) << out;
-    EXPECT_FALSE((*ramp)["met"].get<bool>()) << out;
-    EXPECT_TRUE((*ramp)["not_met_because"].empty());
+    const json* edges = goal(lab, "edges");
+    ASSERT_TRUE(together && edges) << out;
+    EXPECT_FALSE((*edges)["met"].get<bool>()) << out;
+    EXPECT_TRUE((*edges)["not_met_because"].empty());
     EXPECT_FALSE((*together)["met"].get<bool>()) << out;
-    EXPECT_EQ((*together)["not_met_because"], json::array({"ramp"})) << out;
-    // Its points are lost with the ramp's, and the others' are kept.
+    EXPECT_EQ((*together)["not_met_because"], json::array({"edges"})) << out;
+    // Its points are lost with the edges', and the others' are kept.
     double expected = 0.0;
     for (const json& g : lab["goals"])
-        if (g["id"] != "ramp" && g["id"] != "together" && g["met"].get<bool>())
+        if (g["id"] != "edges" && g["id"] != "together" && g["met"].get<bool>())
             expected += g["points"].get<double>();
     EXPECT_DOUBLE_EQ(lab["score"].get<double>(), expected);
-    EXPECT_TRUE(goal(lab, "highlight") && (*goal(lab, "highlight"))["met"].get<bool>()) << out;
+    for (const char* kept : {"ramp", "highlight", "bands"})
+        EXPECT_TRUE(goal(lab, kept) && (*goal(lab, kept))["met"].get<bool>()) << kept << "\n" << out;
     // The terminal says why, naming the goal it rests on.
-    EXPECT_NE(out.find("not met because 'Shade diffuse light through the 1D ramp"), std::string::npos) << out;
+    EXPECT_NE(out.find("not met because 'Darken silhouettes through the edge ramp"), std::string::npos)
+        << out;
     fs::remove_all(tmp);
 }
 
