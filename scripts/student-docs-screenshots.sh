@@ -45,6 +45,8 @@ rm -f "$log"
 # 4. The finished lab.
 cp "$repo/reference_solutions/01-phong/phong.frag" work/01-phong/phong.frag
 "$sl" view 01-phong --scene torus_grazing --frames 3 --screenshot-window "$images/view-pass.png" >/dev/null
+# 4b. The vertex data instead of the picture: the torus's texture coordinates as a checker.
+"$sl" view 01-phong --scene torus --debug uv-checker --frames 3 --screenshot-window "$images/view-debug.png" >/dev/null
 # 5. A multi-pass lab: the bright pass of 06-bloom's starter beside its golden image.
 "$sl" start 06-bloom >/dev/null
 "$sl" view 06-bloom --scene teapot_white --image bright.color --mode split --frames 3 \

@@ -272,6 +272,36 @@ TEST(CliCompare, JsonForIdenticalAndDifferentImages) {
     EXPECT_GT(jd["mismatch_fraction"].get<double>(), 0.01);
 }
 
+// `render --debug VIEW` needs no submission: one picture of the vertex data per scene of the lab,
+// named <scene>.debug-<view>.png, and a line for each mesh the view has nothing to show of.
+TEST(CliRenderDebug, OnePicturePerSceneWithoutASubmission) {
+    const fs::path out = scratch("render_debug");
+    const fs::path labs = fs::path(SHADERLAB_SOURCE_DIR) / "labs";
+    const CliRun r =
+        runCli("render --labs " + labs.string() + " --lab 01-phong --debug tangents --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const json lab = readJson(labs / "01-phong" / "lab.json");
+    ASSERT_TRUE(lab.contains("scenes")) << "01-phong's lab.json";
+    for (const json& scene : lab["scenes"]) {
+        const std::string name = scene["name"].get<std::string>();
+        EXPECT_TRUE(fs::is_regular_file(out / "01-phong" / (name + ".debug-tangents.png"))) << name << "\n"
+                                                                                            << r.output;
+        EXPECT_FALSE(fs::exists(out / "01-phong" / (name + ".png"))) << "the lab's own picture is not drawn";
+    }
+    EXPECT_NE(
+        r.output.find("01-phong: debug view: no tangents in scenes/sphere.gltf, mesh sphere: drawn grey"),
+        std::string::npos)
+        << r.output;
+
+    const CliRun wrong =
+        runCli("render --labs " + labs.string() + " --lab 01-phong --debug normal --out " + out.string());
+    EXPECT_NE(wrong.exit_code, 0);
+    EXPECT_NE(wrong.output.find("uv-checker"), std::string::npos) << "the views are listed\n" << wrong.output;
+    const CliRun none = runCli("render --labs " + labs.string() + " --lab 01-phong --out " + out.string());
+    EXPECT_EQ(none.exit_code, 2) << none.output;
+    EXPECT_NE(none.output.find("needs a submission folder"), std::string::npos) << none.output;
+}
+
 }  // namespace
 
 // Without OSMesa (Mesa 25.1 and later ship none) the default backend renders through EGL and says

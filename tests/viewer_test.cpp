@@ -355,6 +355,63 @@ TEST_F(ViewerWindow, TurnedViewRendersAndIsNotGraded) {
     EXPECT_FALSE(v.passed) << "the turned view looks like the graded one";
 }
 
+// The debug view of the vertex data (`--debug VIEW`, V in the window) takes the lab's picture's
+// place: what the window shows is, pixel for pixel, what `render --debug` writes; the sphere's
+// normal at the centre faces the camera; the window names the view, and says which mesh has no
+// tangents, whose picture is grey. The lab is still rendered and judged behind it.
+TEST_F(ViewerWindow, DebugViewShowsWhatRenderDebugWrites) {
+    const fs::path out = scratch("debug");
+    const std::string ref = (kSource / "reference_solutions").string();
+    const std::string common = "view 01-phong --submission " + ref + labs() + " --scene sphere --frames 2";
+    const CommandRun normals =
+        runCommand(viewCommand(common + " --debug normals --screenshot " + (out / "normals.png").string()));
+    ASSERT_EQ(normals.exit_code, 0) << normals.output;
+    EXPECT_NE(normals.output.find("view: debug view normals: world-space normal"), std::string::npos)
+        << normals.output;
+    EXPECT_NE(normals.output.find("view: debug view normals of scene sphere drawn in"), std::string::npos)
+        << normals.output;
+    EXPECT_NE(normals.output.find("scene sphere passes"), std::string::npos)
+        << "the lab is judged behind it\n"
+        << normals.output;
+    const CommandRun render = runCommand(std::string(SHADERLAB_CLI) + " render --lab 01-phong" + labs() +
+                                         " --debug normals --out " + (out / "headless").string() + " 2>&1");
+    ASSERT_EQ(render.exit_code, 0) << render.output;
+
+    grader::Image shown, headless, lab_picture;
+    std::string err;
+    ASSERT_TRUE(grader::readPng((out / "normals.png").string(), &shown, &err)) << err << "\n"
+                                                                               << normals.output;
+    ASSERT_TRUE(grader::readPng((out / "headless" / "01-phong" / "sphere.debug-normals.png").string(),
+                                &headless, &err))
+        << err;
+    ASSERT_EQ(shown.width, headless.width);
+    ASSERT_EQ(shown.height, headless.height);
+    const grader::ImageVerdict v = grader::judgeImage(headless, {}, shown, {}, grader::Thresholds());
+    EXPECT_TRUE(v.passed) << "PSNR " << v.frame.psnr_db;
+    EXPECT_GT(v.frame.psnr_db, 45.0) << "an 8-bit picture shown 1:1 should be nearly exact";
+    ASSERT_TRUE(grader::readPng((kSource / "labs" / "01-phong" / "golden" / "sphere.png").string(),
+                                &lab_picture, &err))
+        << err;
+    EXPECT_FALSE(grader::judgeImage(lab_picture, {}, shown, {}, grader::Thresholds()).passed)
+        << "the window shows the lab's picture, not the debug view";
+    // The bundled sphere's camera is at (0, 0.8, 3.6), looking at its centre.
+    const glm::vec3 facing = glm::normalize(glm::vec3(0.0f, 0.8f, 3.6f)) * 0.5f + 0.5f;
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(shown.at(shown.width / 2, shown.height / 2, c), facing[c], 0.02f) << "channel " << c;
+
+    const CommandRun tangents =
+        runCommand(viewCommand(common + " --debug tangents --screenshot " + (out / "tangents.png").string()));
+    ASSERT_EQ(tangents.exit_code, 0) << tangents.output;
+    EXPECT_NE(
+        tangents.output.find("view: debug view: no tangents in scenes/sphere.gltf, mesh sphere: drawn grey"),
+        std::string::npos)
+        << tangents.output;
+    grader::Image grey;
+    ASSERT_TRUE(grader::readPng((out / "tangents.png").string(), &grey, &err)) << err;
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(grey.at(grey.width / 2, grey.height / 2, c), 0.35f, 1.0f / 255.0f);
+}
+
 // A shader that does not compile: the window stays up, says where, and the terminal says so too.
 TEST_F(ViewerWindow, BrokenShaderShowsTheErrorAndDoesNotCrash) {
     const fs::path sub = phongSubmission("broken");

@@ -61,8 +61,6 @@ bool readBatchLabs(const BatchArgs& args, batch::BatchSettings* settings, std::v
 
 int runBatch(const BatchArgs& args) {
     const auto t_start = std::chrono::steady_clock::now();
-    // Mesa's on-disk shader cache stays off in every worker (inherited); see gl_context.h.
-    setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
 
     batch::BatchSettings settings;
     std::vector<batch::LabPlan> labs;
@@ -97,6 +95,12 @@ int runBatch(const BatchArgs& args) {
         return 2;
     }
 
+    // Mesa's compiled shaders are kept for every worker (inherited), private to this batch's
+    // state folder (or the cache shards share): the lab's own programs are compiled once, not
+    // once per student. A student's warnings survive it (gl_context.h: useShaderCache).
+    useShaderCache(fs::absolute(args.cache_dir.empty() ? folder.state / "shader-cache"
+                                                       : fs::path(args.cache_dir) / "shader-cache")
+                       .string());
     batch::killWorkersOnSignals();
     settings.exe = batch::selfExe();
     settings.backend = backendName(chooseBackend(args.common.backend));  // workers get the resolved one

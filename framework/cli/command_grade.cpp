@@ -22,6 +22,7 @@
 #include "grader/metrics/scoring.h"
 #include "grader/reports/report.h"
 #include "shaderlab/base/paths.h"
+#include "shaderlab/batch/reference_cache.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/lab/lab_catalog.h"
 #include "shaderlab/lab/lab_spec.h"
@@ -36,6 +37,28 @@ std::string defaultReferenceRoot(const std::string& labs_root) {
     const fs::path p = fs::path(labs_root).parent_path() / "reference_solutions";
     std::error_code ec;
     return fs::is_directory(p, ec) ? p.string() : std::string();
+}
+
+// The caches kept between runs in `cache_dir` (default: out/.shaderlab beside the labs) unless
+// told not to: the reference's images (shaderlab/batch/reference_cache.h), so that a second grade
+// or check of a lab reads them instead of rendering the reference, and Mesa's compiled shaders
+// (gl_context.h: useShaderCache), so that llvmpipe does not compile an unchanged shader again.
+void useCaches(GradeOptions* options, const std::string& cache_dir, bool no_cache) {
+    if (no_cache) return;
+    const fs::path dir = cache_dir.empty() ? fs::path(options->labs_root).parent_path() / "out" / ".shaderlab"
+                                           : fs::path(cache_dir);
+    useShaderCache(fs::absolute(dir / "shader-cache").string());
+    if (options->reference_root.empty()) return;
+    batch::ReferenceCacheSettings cache;
+    cache.dir = (dir / "references").string();
+    cache.tool_version = SHADERLAB_VERSION;
+    cache.labs_root = options->labs_root;
+    cache.reference_root = options->reference_root;
+    cache.backend = options->backend;
+    options->reference_cache = [cache](const LabSpec& spec, const std::string& renderer) {
+        std::string error;  // no entry: the grade renders the reference as it always could
+        return batch::cachedReference(cache, spec.id, renderer, &error);
+    };
 }
 
 // Every report is written whole or not at all (grader/atomic_file.h).
@@ -238,6 +261,7 @@ int runGrade(const GradeArgs& args) {
     if (!args.no_reference)
         options.reference_root =
             args.reference_root.empty() ? defaultReferenceRoot(options.labs_root) : args.reference_root;
+    useCaches(&options, args.cache_dir, args.no_cache);
     const fs::path out = args.out_dir;
     if (!prepareOutput(out)) return 2;
 
@@ -267,6 +291,7 @@ int runCheck(const CheckArgs& args) {
     if (!selectLabs(args.common, {args.lab}, &options.labs_root, &options.labs)) return 2;
     options.limits = isolationLimits(args.limits);
     if (!args.no_reference) options.reference_root = defaultReferenceRoot(options.labs_root);
+    useCaches(&options, args.cache_dir, args.no_cache);
     // The student's own copy (shaderlab start), never the starter code in labs/.
     const std::string submission = args.submission.empty() ? workRoot(options.labs_root) : args.submission;
     std::error_code ec;

@@ -272,13 +272,18 @@ int runGradescopeRun(const GradescopeRunArgs& args) {
                 std::string html = "<p>" + escapeHtml(s.status == "passed" ? "passed" : s.message) + "</p>\n";
                 if (!s.hint.mistake.empty())
                     html += "<p>This looks like a known mistake: " + escapeHtml(s.hint.about) + "</p>\n";
-                // A failing scene shows the student's picture beside the reference's and the difference.
+                // A failing scene shows its first wrong image: the student's picture beside the
+                // reference's and the difference (a passing image has no difference pictures).
                 if (s.status != "passed") {
+                    const grader::ReportPass* wrong = nullptr;
+                    for (const grader::ReportPass& p : s.passes)
+                        if (!p.passed && (wrong == nullptr || p.name == s.first_failing_pass)) wrong = &p;
                     std::string pictures;
                     for (const auto& [label, file] :
-                         {std::pair<std::string, std::string>{"yours", s.student_image},
-                          {"reference", s.reference_image},
-                          {"difference (FLIP)", s.diff_image}}) {
+                         {std::pair<std::string, std::string>{"yours",
+                                                              wrong ? wrong->student_image : s.student_image},
+                          {"reference", wrong ? wrong->reference_image : s.reference_image},
+                          {"difference (FLIP)", wrong ? wrong->diff_image : s.diff_image}}) {
                         const std::string uri = pngDataUri(fs::path(options.out_dir) / file, &budget);
                         if (!file.empty() && !uri.empty())
                             pictures += "<figure><img src=\"" + uri + "\" alt=\"" + label +

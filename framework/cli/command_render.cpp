@@ -9,6 +9,7 @@
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/lab/lab_catalog.h"
 #include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/render/debug_view.h"
 #include "shaderlab/render/renderer.h"
 
 namespace fs = std::filesystem;
@@ -20,6 +21,42 @@ namespace {
 void printDiagnostics(const LabRender& r, const std::string& lab_id) {
     for (const Diagnostic& d : r.diagnostics)
         std::cerr << grader::formatDiagnostic(toReportDiagnostic(d), lab_id + "/") << "\n";
+}
+
+// `render --debug VIEW`: <out>/<lab>/<scene>.debug-<view>.png for every scene, and what the view
+// could not show (a mesh without tangents, say) on stdout.
+int writeDebugViews(const LabSpec& spec, DebugView view, const fs::path& lab_out) {
+    RenderOptions options;
+    options.debug_view = view;
+    const LabRender r = renderLab(spec, "", options);
+    for (const Diagnostic& d : r.diagnostics) {
+        if (d.severity == "note")
+            std::cout << spec.id << ": debug view: " << d.message << "\n";
+        else
+            std::cerr << grader::formatDiagnostic(toReportDiagnostic(d), spec.id + "/") << "\n";
+    }
+    if (r.status != RenderStatus::Ok) {
+        std::cerr << spec.id << ": " << renderStatusName(r.status) << ": " << r.message << "\n";
+        return 1;
+    }
+    std::error_code ec;
+    fs::create_directories(lab_out, ec);
+    int exit_code = 0;
+    for (const SceneRender& scene : r.scenes) {
+        if (scene.passes.empty()) {
+            std::cerr << spec.id << ": scene " << scene.scene << " was not rendered: " << scene.error << "\n";
+            exit_code = 1;
+            continue;
+        }
+        const fs::path file = lab_out / (scene.scene + ".debug-" + debugViewName(view) + ".png");
+        std::string err;
+        if (!grader::writePng(scene.passes.front().color, file.string(), &err)) {
+            std::cerr << "shaderlab: " << err << "\n";
+            return 2;
+        }
+        std::cout << file.string() << "  (" << scene.render_ms << " ms)\n";
+    }
+    return exit_code;
 }
 
 }  // namespace
@@ -59,8 +96,14 @@ int runRender(const RenderArgs& args) {
         std::cerr << "shaderlab: no labs found in " << labs_root << "\n";
         return 2;
     }
+    DebugView debug = DebugView::Off;
+    parseDebugView(args.debug.empty() ? "off" : args.debug, &debug);  // CLI11 let through only known names
     std::error_code ec;
-    if (!fs::is_directory(args.submission, ec)) {
+    if (args.submission.empty() && debug == DebugView::Off) {
+        std::cerr << "shaderlab: render needs a submission folder (or --debug VIEW, which reads none)\n";
+        return 2;
+    }
+    if (debug == DebugView::Off && !fs::is_directory(args.submission, ec)) {
         std::cerr << "shaderlab: " << args.submission << ": submission folder not found\n";
         return 2;
     }
@@ -77,6 +120,10 @@ int runRender(const RenderArgs& args) {
         if (!parsed.ok) {
             for (const std::string& e : parsed.errors) std::cerr << e << "\n";
             exit_code = 2;
+            continue;
+        }
+        if (debug != DebugView::Off) {
+            exit_code = std::max(exit_code, writeDebugViews(parsed.spec, debug, fs::path(args.out_dir) / id));
             continue;
         }
         RenderOptions options;

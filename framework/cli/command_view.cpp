@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/live/file_watch.h"
+#include "shaderlab/render/debug_view.h"
 #include "shaderlab/serve/serve.h"
 #if SHADERLAB_HAVE_VIEWER
 #include "shaderlab/viewer/viewer.h"
@@ -92,6 +93,7 @@ int runView(const ViewArgs& args) {
     options.exit_after_reloads = args.exit_after_reloads;
     options.screenshot = args.screenshot;
     options.screenshot_window = args.screenshot_window;
+    parseDebugView(args.debug, &options.debug_view);  // CLI11 let through only known names
     return viewer::runViewer(options);
 #endif
 }

@@ -50,6 +50,7 @@ struct RenderArgs {
     std::string submission;
     std::string out_dir;
     bool all_passes = false;
+    std::string debug;  // --debug VIEW: each scene's vertex data instead (shaderlab/render/debug_view.h)
 };
 int runRender(const RenderArgs& args);
 
@@ -66,6 +67,8 @@ struct GradeArgs {
     bool no_reference = false;         // grade against the stored goldens even when references exist
     std::vector<std::string> formats;  // json (always), gradescope, junit
     LimitArgs limits;
+    std::string cache_dir;  // what is kept between runs (references, shaders); empty: out/.shaderlab
+    bool no_cache = false;  // render the reference and compile every shader every time
 };
 int runGrade(const GradeArgs& args);
 
@@ -76,6 +79,8 @@ struct CheckArgs {
     std::string out_dir;     // empty: out/check beside the labs folder
     bool no_reference = false;
     LimitArgs limits{10.0, 30.0, 2048};  // a short draw limit: a student waits on an endless loop
+    std::string cache_dir;               // as GradeArgs
+    bool no_cache = false;
 };
 int runCheck(const CheckArgs& args);
 
@@ -93,6 +98,7 @@ struct ViewArgs {
     int frames = 0;
     int exit_after_reloads = 0;
     std::string screenshot, screenshot_window;
+    std::string debug = "off";  // first picture: the lab's, or a debug view of the vertex data
 };
 int runView(const ViewArgs& args);
 
@@ -165,6 +171,52 @@ struct CorpusAddCaseArgs {
     std::string reference_root;  // empty: reference_solutions beside the labs folder
 };
 int runCorpusAddCase(const CorpusAddCaseArgs& args);
+
+// `shaderlab new-lab ID [--like LAB]`: a new lab's folders and files, which parse, render and
+// pass `lab-check` but for the corpus (command_new_lab.cpp, docs/authoring.md).
+struct NewLabArgs {
+    CommonOptions common;  // labs_root only
+    std::string id;
+    std::string like;            // copy this lab's lab.json, files and README headings
+    std::string title;           // empty: from the id ("12-normal-mapping": "Normal mapping")
+    std::string reference_root;  // empty: reference_solutions beside the labs folder
+    std::string corpus_root;     // empty: tests/corpus beside the labs folder
+};
+int runNewLab(const NewLabArgs& args);
+
+// `shaderlab lab-check ID`: every check CI makes of one lab, one line each with its time
+// (command_lab_check.cpp). `fix` rewrites the README's generated tables from lab.json.
+struct LabCheckArgs {
+    CommonOptions common;  // backend and labs_root
+    std::string lab;
+    std::string reference_root;  // empty: reference_solutions beside the labs folder
+    std::string corpus_root;     // empty: tests/corpus beside the labs folder
+    std::string out_dir;         // empty: out/lab-check/<lab> beside the labs folder
+    double timeout_s = 10.0;     // one corpus case's render, as `corpus --timeout`
+    bool fix = false;
+};
+int runLabCheck(const LabCheckArgs& args);
+
+// `shaderlab scene-sweep LAB`: candidate variants of one of the lab's scenes, each judged by how
+// well it separates each goal's corpus mistakes from its alternatives, ranked
+// (command_scene_sweep.cpp, docs/authoring.md "Choosing scenes with scene-sweep").
+struct SceneSweepArgs {
+    CommonOptions common;  // backend and labs_root
+    std::string lab;
+    std::string scene;                  // the base scene (or the sweep file's "scene")
+    std::vector<std::string> vary;      // PATH=VALUES, repeatable (scene_sweep.h has the grammar)
+    std::string sweep_file;             // --sweep: scene, goals, vary and whole candidates in JSON
+    std::vector<std::string> goals;     // judge under these ("all": every goal); empty: the base scene's
+    std::vector<std::string> mistakes;  // the only mistakes of those goals a candidate must catch
+    std::string out_dir;                // empty: out/scene-sweep/<lab> beside the labs folder
+    std::string corpus_root;            // empty: tests/corpus beside the labs folder
+    std::string reference_root;         // empty: reference_solutions beside the labs folder
+    std::size_t max_candidates = 64;
+    std::size_t top = 3;      // candidates printed as lab.json scenes
+    double timeout_s = 10.0;  // one candidate's drawing, per corpus case
+    bool keep = false;        // keep the swept lab, its goldens and the case folders (<out>/work)
+};
+int runSceneSweep(const SceneSweepArgs& args);
 
 // `shaderlab batch`: every submission (folder or .zip) below `submissions_dir`, each lab in a
 // worker process; see command_batch.cpp and docs/instructors.md.

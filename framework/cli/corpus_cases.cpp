@@ -90,4 +90,42 @@ bool loadCases(const fs::path& file, const LabSpec& spec, std::vector<Case>* out
     return errors->size() == errors_before;
 }
 
+bool materialise(const LabSpec& spec, const fs::path& reference_lab, const fs::path& case_dir, const Case& c,
+                 const fs::path& submission, std::string* error) {
+    std::error_code ec;
+    fs::remove_all(submission, ec);
+    const fs::path lab = submission / spec.id;
+    fs::create_directories(lab, ec);
+    for (const std::string& f : spec.student_files) {
+        fs::create_directories((lab / f).parent_path(), ec);
+        fs::copy_file(reference_lab / f, lab / f, fs::copy_options::overwrite_existing, ec);
+        if (ec) {
+            *error = (reference_lab / f).string() + ": " + ec.message();
+            return false;
+        }
+    }
+    if (fs::is_directory(case_dir, ec)) {
+        for (const auto& entry : fs::recursive_directory_iterator(case_dir)) {
+            if (!entry.is_regular_file()) continue;
+            const fs::path rel = fs::relative(entry.path(), case_dir);
+            fs::create_directories((lab / rel).parent_path(), ec);
+            fs::copy_file(entry.path(), lab / rel, fs::copy_options::overwrite_existing, ec);
+        }
+    }
+    for (const std::string& f : c.remove) fs::remove(lab / f, ec);
+    return true;
+}
+
+std::set<std::string> expectedFailures(const LabSpec& spec, const std::vector<std::string>& fails) {
+    std::set<std::string> out(fails.begin(), fails.end());
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (const GoalSpec& g : spec.goals)
+            if (!out.count(g.id) && std::any_of(g.depends_on.begin(), g.depends_on.end(),
+                                                [&](const std::string& d) { return out.count(d) > 0; }))
+                grew = out.insert(g.id).second;
+    }
+    return out;
+}
+
 }  // namespace shaderlab::cli

@@ -1,11 +1,13 @@
 // A lab's corpus file, tests/corpus/<lab>/cases.json (docs/corpus.schema.json): read, checked
 // against the schema and then against the lab (goal ids, case folders, what each kind takes).
-// Used by `corpus` to grade the cases and by `corpus add-case` to check what it writes. Grades
-// nothing and writes nothing.
+// Used by `corpus` to grade the cases, by `corpus add-case` to check what it writes and by
+// `scene-sweep` to grade them on candidate scenes. Grades nothing; writes only a case's
+// submission folder (materialise).
 #pragma once
 
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,5 +30,16 @@ const std::string& corpusSchemaText();
 // ("<file>: <json path>: <problem>") when it is not a valid one.
 bool loadCases(const std::filesystem::path& file, const LabSpec& spec, std::vector<Case>* out,
                std::vector<std::string>* errors);
+
+// A submission folder for one case, `submission`/<lab>/: the reference's student files (from
+// `reference_lab`), then the case's files (from `case_dir`) over them, then the deletions. False,
+// with the reason, when a reference file cannot be copied.
+bool materialise(const LabSpec& spec, const std::filesystem::path& reference_lab,
+                 const std::filesystem::path& case_dir, const Case& c,
+                 const std::filesystem::path& submission, std::string* error);
+
+// The goals a mistake may fail: those it names, and every goal that rests on one of them
+// (depends_on, followed through), since such a goal is not met because of it.
+std::set<std::string> expectedFailures(const LabSpec& spec, const std::vector<std::string>& fails);
 
 }  // namespace shaderlab::cli

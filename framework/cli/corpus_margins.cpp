@@ -205,15 +205,6 @@ CaseMargins readCase(const LabSpec& spec, const Case& c, const fs::path& report_
 
 json finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-std::string factorText(double f) {
-    if (std::isnan(f)) return "n/a";
-    if (std::isinf(f)) return "inf";
-    char buf[32];
-    if (f >= 1000.0) return ">1000x";
-    std::snprintf(buf, sizeof buf, "%.3gx", f);
-    return buf;
-}
-
 std::string metricCell(const MetricMargin& m) {
     if (std::isnan(m.value)) return "-";
     char buf[48];
@@ -342,6 +333,23 @@ void printTightest(const char* what, const Tightest& t) {
 }
 
 }  // namespace
+
+std::string factorText(double f) {
+    if (std::isnan(f)) return "n/a";
+    if (std::isinf(f)) return "inf";
+    char buf[32];
+    if (f >= 1000.0) return ">1000x";
+    std::snprintf(buf, sizeof buf, "%.3gx", f);
+    return buf;
+}
+
+VerdictMargin verdictMargin(const json& judged, const json& thresholds, const GradingThresholds& lab) {
+    ImageMargin im;
+    im.passed = judged.value("passed", false);
+    im.metrics = metricMargins(judged.value("metrics", json::object()), thresholds, lab);
+    decide(&im, judged.value("reasons", json::array()));
+    return {im.passed, im.margin, im.limiting, im.reason};
+}
 
 std::map<std::string, json> reportLabMargins(const LabSpec& spec, const std::vector<Case>& cases,
                                              const fs::path& lab_out) {

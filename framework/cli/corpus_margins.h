@@ -31,4 +31,20 @@ namespace shaderlab::cli {
 std::map<std::string, nlohmann::json> reportLabMargins(const LabSpec& spec, const std::vector<Case>& cases,
                                                        const std::filesystem::path& lab_out);
 
+// One graded image's verdict and the factor by which it holds, as the table above gives it:
+// `judged` is the image's entry in report.json (a scene's "passes" item, or its
+// "on_reference_inputs"), `thresholds` that entry's "thresholds" (null: the lab's). `margin` is
+// NaN for an image that failed on something no threshold measures (NaN pixels), `reason` then
+// saying what; `limiting` names the metric that sets it.
+struct VerdictMargin {
+    bool passed = false;
+    double margin = 0.0;
+    std::string limiting, reason;
+};
+VerdictMargin verdictMargin(const nlohmann::json& judged, const nlohmann::json& thresholds,
+                            const GradingThresholds& lab);
+
+// A factor as the table prints it: "2.5x", ">1000x", "inf", "n/a" (NaN).
+std::string factorText(double f);
+
 }  // namespace shaderlab::cli

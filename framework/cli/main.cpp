@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "shaderlab/base/json_messages.h"
+#include "shaderlab/render/debug_view.h"
 
 namespace {
 
@@ -28,6 +29,13 @@ void addLimits(CLI::App* cmd, LimitArgs* limits, const char* draw_help) {
         ->capture_default_str();
 }
 
+// The debug views' names, "off" first (shaderlab/render/debug_view.h).
+std::vector<std::string> debugViewList() {
+    std::vector<std::string> names{"off"};
+    for (const shaderlab::DebugViewInfo& v : shaderlab::debugViews()) names.push_back(v.name);
+    return names;
+}
+
 void addCommon(CLI::App* cmd, CommonOptions* common) {
     cmd->add_option("--backend", common->backend,
                     "OpenGL context backend: auto (OSMesa where it is installed, else EGL), osmesa or egl")
@@ -39,12 +47,22 @@ void addCommon(CLI::App* cmd, CommonOptions* common) {
 
 CLI::App* addRender(CLI::App& app, RenderArgs* args) {
     CLI::App* cmd = app.add_subcommand("render", "render a submission's labs to PNG, one per graded scene");
-    cmd->add_option("submission", args->submission, "folder mirroring labs/ (e.g. reference_solutions)")
-        ->required();
+    cmd->add_option("submission", args->submission,
+                    "folder mirroring labs/ (e.g. reference_solutions); not needed with --debug");
     cmd->add_option("--out", args->out_dir, "output folder")->required();
     cmd->add_flag("--all-passes", args->all_passes, "also write the ungraded passes of multi-pass labs");
+    cmd->add_option("--debug", args->debug,
+                    "instead, draw each scene's vertex data as colours: <scene>.debug-VIEW.png")
+        ->check(CLI::IsMember(debugViewList()));
     addCommon(cmd, &args->common);
     return cmd;
+}
+
+void addReferenceCache(CLI::App* cmd, std::string* dir, bool* off) {
+    cmd->add_option("--cache", *dir,
+                    "folder of what is kept between runs: reference renders and compiled shaders "
+                    "(default: out/.shaderlab beside labs/)");
+    cmd->add_flag("--no-cache", *off, "render the reference and compile every shader every time");
 }
 
 CLI::App* addGrade(CLI::App& app, GradeArgs* args) {
@@ -56,6 +74,7 @@ CLI::App* addGrade(CLI::App& app, GradeArgs* args) {
     cmd->add_option("--reference", args->reference_root,
                     "reference solutions folder (default: reference_solutions beside labs/)");
     cmd->add_flag("--no-reference", args->no_reference, "grade against the stored golden images");
+    addReferenceCache(cmd, &args->cache_dir, &args->no_cache);
     addLimits(cmd, &args->limits, "seconds one lab may take to draw its scenes");
     addCommon(cmd, &args->common);
     return cmd;
@@ -79,6 +98,7 @@ CLI::App* addCheck(CLI::App& app, CheckArgs* args) {
                     "folder mirroring labs/ (default: work/ beside labs/, made by `shaderlab start`)");
     cmd->add_option("--out", args->out_dir, "where images and the report go (default: out/check)");
     cmd->add_flag("--no-reference", args->no_reference, "use the stored golden images");
+    addReferenceCache(cmd, &args->cache_dir, &args->no_cache);
     addLimits(cmd, &args->limits, "seconds the lab may take to draw its scenes");
     cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
     cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
@@ -113,6 +133,10 @@ CLI::App* addView(CLI::App& app, ViewArgs* args) {
     cmd->add_option("--screenshot", args->screenshot,
                     "at exit, save the picture as shown, one pixel per image pixel (PNG)");
     cmd->add_option("--screenshot-window", args->screenshot_window, "at exit, save the whole window (PNG)");
+    cmd->add_option("--debug", args->debug,
+                    "first picture: the lab's (off) or a view of the vertex data (V cycles)")
+        ->check(CLI::IsMember(debugViewList()))
+        ->capture_default_str();
     cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
     cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
     return cmd;
@@ -231,6 +255,84 @@ CLI::App* addCorpusAddCase(CLI::App* corpus, CorpusAddCaseArgs* args) {
         ->required();
     cmd->add_option("--corpus", args->corpus_root, "folder of <lab>/cases.json (default: tests/corpus)");
     cmd->add_option("--reference", args->reference_root, "reference solutions folder");
+    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    return cmd;
+}
+
+// `new-lab` and `lab-check`: an instructor's own lab, from its scaffold to what CI asks of it.
+CLI::App* addNewLab(CLI::App& app, NewLabArgs* args) {
+    CLI::App* cmd = app.add_subcommand("new-lab",
+                                       "start a lab of your own: labs/ID/, reference_solutions/ID/, "
+                                       "tests/corpus/ID/ and its course index row");
+    cmd->add_option("id", args->id, "the new lab's id, e.g. 12-normal-mapping")->required();
+    cmd->add_option("--like", args->like,
+                    "copy this lab's lab.json, files and README headings (e.g. 05-post-processing)");
+    cmd->add_option("--title", args->title, "the lab's title (default: from the id)");
+    cmd->add_option("--reference", args->reference_root,
+                    "reference solutions folder (default: reference_solutions beside labs/)");
+    cmd->add_option("--corpus", args->corpus_root, "folder of <lab>/cases.json (default: tests/corpus)");
+    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    return cmd;
+}
+
+CLI::App* addLabCheck(CLI::App& app, LabCheckArgs* args) {
+    CLI::App* cmd = app.add_subcommand(
+        "lab-check",
+        "check one lab as CI does: lab.json, files, course index, README tables, goldens, corpus");
+    cmd->add_option("lab", args->lab, "lab id, e.g. 12-normal-mapping")->required();
+    cmd->add_flag("--fix", args->fix, "rewrite the README's generated goals and scenes tables from lab.json");
+    cmd->add_option("--reference", args->reference_root,
+                    "reference solutions folder (default: reference_solutions beside labs/)");
+    cmd->add_option("--corpus", args->corpus_root, "folder of <lab>/cases.json (default: tests/corpus)");
+    cmd->add_option("--out", args->out_dir,
+                    "where the fresh goldens and corpus reports go (default: out/lab-check/LAB)");
+    cmd->add_option("--timeout", args->timeout_s, "seconds one corpus case may take to render")
+        ->check(CLI::Range(0.1, 600.0))
+        ->capture_default_str();
+    cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
+    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    return cmd;
+}
+
+CLI::App* addSceneSweep(CLI::App& app, SceneSweepArgs* args) {
+    CLI::App* cmd = app.add_subcommand(
+        "scene-sweep",
+        "rank variants of a lab's scene by how well they separate each goal's corpus mistakes from the "
+        "alternatives");
+    cmd->add_option("lab", args->lab, "lab id, e.g. 08-gooch")->required();
+    cmd->add_option("--scene", args->scene,
+                    "the scene to vary, one of the lab's (or the sweep file's \"scene\")");
+    cmd->add_option("--vary", args->vary,
+                    "PATH=VALUES, repeatable: e.g. lights[0].direction=[1,-1,0]..[-1,-1,0]:5, "
+                    "uniforms.u_shininess=2,8,32, file=scenes/sphere.gltf,scenes/torus.gltf")
+        ->allow_extra_args(false);
+    cmd->add_option("--sweep", args->sweep_file,
+                    "a JSON file of {scene, goals, vary: {PATH: VALUES}, candidates: [scene objects]}");
+    cmd->add_option("--goal", args->goals,
+                    "judge the candidates under this goal (repeatable; \"all\": every goal; default: the "
+                    "goals of the scene)")
+        ->allow_extra_args(false);
+    cmd->add_option("--mistake", args->mistakes,
+                    "the scene is for this mistake of the corpus: the goals' other mistakes need not fail "
+                    "on it (repeatable; default: every mistake of the goals)")
+        ->allow_extra_args(false);
+    cmd->add_option("--max-candidates", args->max_candidates, "refuse a sweep of more candidates than this")
+        ->check(CLI::Range(std::size_t(1), std::size_t(512)))
+        ->capture_default_str();
+    cmd->add_option("--top", args->top, "print the best N candidates as lab.json scenes")
+        ->check(CLI::Range(std::size_t(0), std::size_t(512)))
+        ->capture_default_str();
+    cmd->add_option("--timeout", args->timeout_s, "seconds one candidate may take to draw, per corpus case")
+        ->check(CLI::Range(0.1, 600.0))
+        ->capture_default_str();
+    cmd->add_option("--out", args->out_dir,
+                    "where sweep.json and the candidates' reference pictures go (default: "
+                    "out/scene-sweep/LAB)");
+    cmd->add_flag("--keep", args->keep, "keep the swept lab, its goldens and the case folders in <out>/work");
+    cmd->add_option("--corpus", args->corpus_root, "folder of <lab>/cases.json (default: tests/corpus)");
+    cmd->add_option("--reference", args->reference_root,
+                    "reference solutions folder (default: reference_solutions beside labs/)");
+    cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
     cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
     return cmd;
 }
@@ -412,6 +514,12 @@ int main(int argc, char** argv) {
     CLI::App* corpus_cmd = addCorpus(app, &corpus);
     CorpusAddCaseArgs add_case;
     CLI::App* add_case_cmd = addCorpusAddCase(corpus_cmd, &add_case);
+    NewLabArgs new_lab;
+    CLI::App* new_lab_cmd = addNewLab(app, &new_lab);
+    LabCheckArgs lab_check;
+    CLI::App* lab_check_cmd = addLabCheck(app, &lab_check);
+    SceneSweepArgs scene_sweep;
+    CLI::App* scene_sweep_cmd = addSceneSweep(app, &scene_sweep);
     BatchArgs batch;
     CLI::App* batch_cmd = addBatch(app, &batch);
     BatchWorkerArgs worker;
@@ -463,6 +571,9 @@ int main(int argc, char** argv) {
     if (goldens_cmd->parsed()) return runGoldens(goldens);
     if (add_case_cmd->parsed()) return runCorpusAddCase(add_case);
     if (corpus_cmd->parsed()) return runCorpus(corpus);
+    if (new_lab_cmd->parsed()) return runNewLab(new_lab);
+    if (lab_check_cmd->parsed()) return runLabCheck(lab_check);
+    if (scene_sweep_cmd->parsed()) return runSceneSweep(scene_sweep);
     if (batch_cmd->parsed()) return runBatch(batch);
     if (worker_cmd->parsed()) return runBatchWorker(worker);
     if (merge_cmd->parsed()) return runMerge(merge);

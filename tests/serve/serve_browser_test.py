@@ -514,6 +514,73 @@ class BrowserTest(unittest.TestCase):
             st = s.wait_state(lambda x: x["picture"]["graded_view"], 30, "a picture of the graded view")
             self.assertTrue(st["view"]["graded_view"])
 
+    # 7
+    def test_7_debug_view_of_the_vertex_data(self):
+        """The page's "vertex data" select asks the server for a debug view (nothing is computed in
+        the page): the canvas is `render --debug`'s PNG, the notes say which mesh has no tangents,
+        the inspector reads the normal the server decodes, and a mode button brings the lab's
+        picture back."""
+        with Served(ARGS, LAB) as s:
+            page = self.open(s, scale=1)
+            st = s.wait_state(settled, 60, "the first picture judged and the lab graded")
+            st = self.wait_picture(page, s)
+            scene = st["view"]["scene"]
+            lab_canvas = canvas_png(page)
+            names = page.eval("[...document.getElementById('debug').options].map(o => o.value)")
+            self.assertEqual(names, ["off"] + [v["name"] for v in st["debug_views"]])
+            self.assertIn("tangents", names)
+
+            def pick(name):
+                page.eval("(() => { const s = document.getElementById('debug'); s.value = '%s';"
+                          " s.dispatchEvent(new Event('change')); return true; })()" % name)
+                d = s.wait_state(lambda x: x["view"]["debug"] == name and x["debug"] and
+                                 x["debug"]["view"] == name and x["debug"]["scene"] == scene, 30,
+                                 "the %s view drawn" % name)["debug"]
+                page.wait_for("window.workbench.shownDebugSeq === %d" % d["seq"], 30, "the %s view shown" % name)
+                return d
+
+            d = pick("normals")
+            self.assertEqual(d["notes"], [])
+            label = page.eval("document.getElementById('picture-label').textContent")
+            self.assertIn("vertex data: normals", label)
+            self.assertIn("not graded", page.eval("document.getElementById('verdict-summary').textContent"))
+            out = tempfile.mkdtemp(prefix="shaderlab-render-debug-")
+            try:
+                r = subprocess.run([ARGS.shaderlab, "render", "--lab", LAB, "--labs", os.path.join(ARGS.source, "labs"),
+                                    "--debug", "normals", "--out", out],
+                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+                self.assertEqual(r.returncode, 0, r.stdout)
+                with open(os.path.join(out, LAB, scene + ".debug-normals.png"), "rb") as f:
+                    want = decode_png(f.read())
+            finally:
+                shutil.rmtree(out, ignore_errors=True)
+            n, first = differing_pixels(decode_png(canvas_png(page)), want)
+            self.assertEqual(n, 0, "the canvas differs from `render --debug`'s PNG in %d pixels (first %r)" % (n, first))
+
+            # The inspector: the server says what the centre pixel stands for.
+            page.eval("(() => { const c = document.getElementById('picture'); const r = c.getBoundingClientRect();"
+                      " c.dispatchEvent(new MouseEvent('mousemove', {bubbles: true,"
+                      " clientX: Math.ceil(r.left + r.width / 2 + 0.5), clientY: Math.ceil(r.top + r.height / 2 + 0.5)})); return true; })()")
+            text = page.wait_for("(() => { const t = document.getElementById('inspector').textContent;"
+                                 " return t.includes('normal (') ? t : ''; })()", 10, "the inspector")
+            normal = [float(v) for v in text.split("normal (", 1)[1].split(")", 1)[0].split(",")]
+            self.assertGreater(normal[2], 0.9, "the sphere's centre faces the camera: %s" % text)
+
+            d = pick("tangents")
+            self.assertTrue(any(n.startswith("no tangents in scenes/") and "drawn grey" in n for n in d["notes"]), d)
+            shown_notes = page.wait_for("(() => { const e = document.getElementById('debug-notes');"
+                                        " return e.classList.contains('hidden') ? '' : e.textContent; })()", 10,
+                                        "the notes on the page")
+            self.assertIn("no tangents in scenes/", shown_notes)
+            self.assertTrue(close_to(centre_pixel(page), (89, 89, 89)), "grey: %r" % (centre_pixel(page),))
+
+            # A mode of the lab's picture turns the debug view off.
+            page.eval("document.getElementById('mode-student').click(); true")
+            s.wait_state(lambda x: x["view"]["debug"] == "off", 10, "the debug view off")
+            page.wait_for("!window.workbench.shownKey.includes('/debug/')", 30, "the lab's picture again")
+            self.assertEqual(canvas_png(page), lab_canvas, "the lab's picture is not back")
+            self.assertTrue(page.eval("document.getElementById('debug-notes').classList.contains('hidden')"))
+
 
 def main():
     global ARGS

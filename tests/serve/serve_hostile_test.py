@@ -609,6 +609,10 @@ class HostileClients(unittest.TestCase):
             ("POST /api/view with a non-existent scene", post_view(b'{"scene": "no_such_scene_at_all"}')),
             ("POST /api/view with a scene that is a path", post_view(b'{"scene": "../../../../etc/passwd"}')),
             ("POST /api/view with an empty body", post_view(b"")),
+            ("POST /api/view with an unknown debug view", post_view(b'{"scene": "sphere", "debug": "positions"}')),
+            ("POST /api/view with a debug view that is a path",
+             post_view(b'{"scene": "sphere", "debug": "../../../../etc/passwd"}')),
+            ("POST /api/view with a debug view that is a number", post_view(b'{"scene": "sphere", "debug": 3}')),
             ("GET /api/view", get_line(b"/api/view")),
             ("an unknown method", b"BREW /api/state HTTP/1.1\r\nHost: x\r\n\r\n"),
         ]

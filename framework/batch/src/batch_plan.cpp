@@ -11,6 +11,7 @@
 
 #include "shaderlab/batch/batch.h"
 #include "shaderlab/batch/plan.h"
+#include "shaderlab/batch/reference_cache.h"
 #include "shaderlab/batch/results.h"
 #include "shaderlab/lab/lab_spec.h"
 
@@ -27,18 +28,6 @@ std::string secondsText(double seconds) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", seconds);
     return text;
-}
-
-// The folders beside the labs that are not labs (scenes, textures, shared GLSL): in every key.
-std::vector<std::string> sharedFolders(const BatchSettings& settings) {
-    std::error_code ec;
-    std::vector<std::string> shared_dirs;
-    for (const fs::directory_entry& e : fs::directory_iterator(settings.labs_root, ec))
-        if (e.is_directory(ec) && std::find(settings.all_lab_ids.begin(), settings.all_lab_ids.end(),
-                                            e.path().filename().string()) == settings.all_lab_ids.end())
-            shared_dirs.push_back(e.path().string());
-    std::sort(shared_dirs.begin(), shared_dirs.end());
-    return shared_dirs;
 }
 
 // What a submission's report depends on: the program, its files, its labs' keys, the formats.
@@ -246,23 +235,15 @@ void planLabs(const BatchSettings& settings, const ResultsFolder& folder, Plan* 
     std::error_code ec;
     const std::string& labs_root = settings.labs_root;
     const std::string& reference_root = settings.reference_root;
-    // Keys. A lab's: the program, the driver, the lab folder (lab.json, scenes, hints, goldens),
-    // the shared folders beside the labs, its reference solution, and the limits.
-    const std::vector<std::string> shared_dirs = sharedFolders(settings);
+    // Keys. A lab's: what its reference images depend on (reference_cache.h: the program, the
+    // driver, the lab folder, the folders beside the labs, its reference solution), and the limits.
     for (LabPlan& lab : plan->labs) {
         const bool has_reference =
             !reference_root.empty() && fs::is_directory(fs::path(reference_root) / lab.id, ec);
         Hasher ref;
-        ref.add(settings.tool_version);
-        ref.add(settings.backend);
-        ref.add(settings.renderer);
-        ref.add(lab.id);
-        ref.addTree((fs::path(labs_root) / lab.id).string(), labs_root,
-                    has_reference ? std::vector<std::string>{"golden"} : std::vector<std::string>{});
-        for (const std::string& d : shared_dirs) ref.addTree(d, labs_root);
+        addReferenceInputs(&ref, settings.tool_version, settings.exe, settings.backend, settings.renderer,
+                           labs_root, lab.id, reference_root);
         if (has_reference) {
-            ref.add("reference");
-            ref.addTree((fs::path(reference_root) / lab.id).string(), reference_root);
             lab.goldens_root = (folder.cache / (lab.id + "-" + ref.hex())).string();
             if (!fs::is_directory(lab.goldens_root, ec)) {
                 Job job;

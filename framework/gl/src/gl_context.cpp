@@ -357,6 +357,20 @@ bool loadGl(GetProcFn get_proc, GlInfo* info, std::string* error) {
     return true;
 }
 
+void useShaderCache(const std::string& dir) {
+    setenv("MESA_SHADER_CACHE_DIR", dir.c_str(), 1);
+    setenv("MESA_SHADER_CACHE_DISABLE", "false", 1);
+    // Each edit of a student's file adds an entry; Mesa drops the oldest beyond this size.
+    setenv("MESA_SHADER_CACHE_MAX_SIZE", "256M", 0);
+}
+
+std::string shaderCacheDir() {
+    const char* off = std::getenv("MESA_SHADER_CACHE_DISABLE");
+    const char* dir = std::getenv("MESA_SHADER_CACHE_DIR");
+    if (!off || std::strcmp(off, "false") != 0 || !dir || !*dir) return {};
+    return dir;
+}
+
 ContextResult createHeadlessContext(Backend backend) {
     // A cached shader compiles silently: "`v' used uninitialized" or a varying never written
     // would show once and never again. Feedback must not depend on what ran before; the cost

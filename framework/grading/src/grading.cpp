@@ -558,13 +558,25 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         return finish();
     }
 
-    // Goldens and hints live in the lab's folder, or under goldens_root when it is given.
-    const std::string stored_dir =
+    // Goldens and hints live in the lab's folder, or under goldens_root when it is given; a
+    // reference render kept from an earlier run lives in the cache, hints beside it.
+    std::string stored_dir =
         options.goldens_root.empty() ? spec.lab_dir : (fs::path(options.goldens_root) / id).string();
     const UnloadableScenes unloadable = unloadableScenes(student.render.scenes);
-    const ReferenceImages ref = grading_detail::hasReference(options.reference_root, id)
-                                    ? grading_detail::renderReference(spec, options.reference_root, options)
-                                    : grading_detail::loadGoldens(spec, stored_dir, unloadable.names);
+    ReferenceImages ref;
+    if (grading_detail::hasReference(options.reference_root, id)) {
+        const std::string cached =
+            options.reference_cache ? options.reference_cache(spec, student.renderer) : std::string();
+        if (!cached.empty()) {
+            ref = grading_detail::loadGoldens(spec, (fs::path(cached) / id).string(), unloadable.names);
+            ref.source = "reference_cache";
+            if (ref.ok) stored_dir = (fs::path(cached) / id).string();
+        }
+        // No cache, or an entry that cannot be read (removed under us): render it now.
+        if (!ref.ok) ref = grading_detail::renderReference(spec, options.reference_root, options);
+    } else {
+        ref = grading_detail::loadGoldens(spec, stored_dir, unloadable.names);
+    }
     lab.reference_source = ref.source;
     if (!ref.ok) {
         lab.status = "crashed";

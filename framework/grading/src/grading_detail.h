@@ -35,7 +35,7 @@ IsolatedRender renderFrom(const LabSpec& spec, const std::string& root, Backend 
 
 struct ReferenceImages {
     bool ok = false;
-    std::string source;  // "reference_solutions" | "goldens"
+    std::string source;  // "reference_solutions" (rendered now) | "goldens" | "reference_cache"
     std::string error;
     // scene -> graded passes in order
     std::map<std::string, std::vector<PassImage>> scenes;

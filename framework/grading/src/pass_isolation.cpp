@@ -32,7 +32,7 @@ IsolatedRender renderOnReferenceInputs(const LabSpec& spec, const std::string& s
     RenderOptions render;
     render.containment_root = submission_dir;
     render.only_scenes = scenes;
-    const bool stored = ref.source == "goldens";
+    const bool stored = ref.source != "reference_solutions";  // read from PNG/RGBE files: already rounded
     for (const std::string& scene : scenes) {
         const auto it = ref.scenes.find(scene);
         if (it == ref.scenes.end()) continue;

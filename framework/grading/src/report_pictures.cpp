@@ -1,6 +1,7 @@
 // The pictures the report shows of one judged image, written into the report folder. It does
 // not judge anything: the verdict comes in made (grading.cpp), and so do the images.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -77,12 +78,21 @@ ShownPictures writeReportPictures(const PicturePlace& place, const GradedImage& 
     grader::Image picture = grader::markNonFinite(shown_mine);
     // A grade without pictures (the workbench's verdict) needs only what was shown, for the hints.
     if (out_dir.empty()) return {std::move(picture), std::move(shown_theirs)};
-    rp->student_image = writeImage(picture, out_dir, base / ("student" + suffix + ".png"), errors);
-    const bool golden_png = place.reference_source == "goldens" && !g.hdr;
-    rp->reference_image = copyOrWriteImage(
-        golden_png ? goldenPath(place.stored_dir, place.scene, g.id, place.final_image, false)
-                   : std::string(),
-        shown_theirs, out_dir, base / ("reference" + suffix + ".png"), errors);
+    const bool golden_png = place.reference_source != "reference_solutions" && !g.hdr;
+    const std::string golden = golden_png
+                                   ? goldenPath(place.stored_dir, place.scene, g.id, place.final_image, false)
+                                   : std::string();
+    // An image identical to a stored reference is that file: copied, not encoded again.
+    const bool identical = std::isinf(v.frame.psnr_db) && v.nan_count + v.inf_count == 0;
+    rp->student_image =
+        identical && !golden.empty()
+            ? copyOrWriteImage(golden, picture, out_dir, base / ("student" + suffix + ".png"), errors)
+            : writeImage(picture, out_dir, base / ("student" + suffix + ".png"), errors);
+    rp->reference_image =
+        copyOrWriteImage(golden, shown_theirs, out_dir, base / ("reference" + suffix + ".png"), errors);
+    // The report shows a passing image as the student's picture alone (report_markup.cpp): its
+    // difference pictures would be drawn and encoded for nobody.
+    if (v.passed) return {std::move(picture), std::move(shown_theirs)};
     grader::HeatmapConfig hc;
     hc.outline = v.mismatches.empty() ? nullptr : &v.mismatches;
     const grader::Image heat = grader::diffHeatmap(v.flip_map, mine.width, mine.height, hc);

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shaderlab/grading/grading.h"
+#include "shaderlab/render/debug_view.h"
 
 namespace shaderlab::viewer {
 
@@ -187,6 +188,7 @@ std::string gradeAnswer(const LabSpec& spec, Backend backend, const json& req) {
             options.orbit.yaw_deg = req.value("yaw", 0.0f);
             options.orbit.pitch_deg = req.value("pitch", 0.0f);
             options.orbit.zoom = req.value("zoom", 1.0f);
+            parseDebugView(req.value("debug", "off"), &options.debug_view);
             IsolationLimits limits;
             limits.timeout_s = req.value("timeout", 5.0);
             result = renderLabIsolated(spec, req.value("dir", ""), backend, limits, options);
@@ -274,7 +276,7 @@ IsolatedRender RenderService::render(const RenderRequest& request) {
     const json req = {{"dir", request.shader_dir},        {"root", request.containment_root},
                       {"scene", request.scene},           {"yaw", request.orbit.yaw_deg},
                       {"pitch", request.orbit.pitch_deg}, {"zoom", request.orbit.zoom},
-                      {"timeout", request.timeout_s}};
+                      {"timeout", request.timeout_s},     {"debug", debugViewName(request.debug_view)}};
     const std::string line = req.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
     IsolatedRender out;
     if (!writeAll(to_server_, line.data(), line.size()) || !readAnswer(from_server_, &out)) {

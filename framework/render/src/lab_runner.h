@@ -59,6 +59,10 @@ struct GpuMesh {
 // or at a constant; returns the locations enabled, to disable after the draw.
 std::vector<GLuint> bindOptionalAttributes(GpuMesh& mesh, GLuint program);
 
+// A mesh's positions, normals, texcoords (locations 0, 1, 2) and indices on the GPU; `source`
+// is left for the caller to set.
+std::unique_ptr<GpuMesh> uploadMesh(const Mesh& mesh);
+
 // One triangle that covers the viewport; texcoords run 0..1 across the visible part.
 std::unique_ptr<GpuMesh> fullscreenTriangle();
 

@@ -15,6 +15,7 @@
 #include "lab_runner.h"
 #include "shaderlab/base/paths.h"
 #include "shaderlab/base/timings.h"
+#include "shaderlab/render/debug_view.h"
 
 namespace shaderlab {
 
@@ -309,6 +310,7 @@ bool LabRunner::renderScene(const SceneSpec& scene_spec) {
 }  // namespace render_detail
 
 LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const RenderOptions& options) {
+    if (options.debug_view != DebugView::Off) return renderDebugView(spec, options.debug_view, options);
     LabRender result;
     render_detail::LabRunner runner(spec, shader_dir, options, &result);
     if (!runner.prepare()) return result;

@@ -32,6 +32,8 @@ void uploadAttribute(GLuint buffer, GLuint location, int components, const std::
     glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
 }
 
+}  // namespace
+
 std::unique_ptr<GpuMesh> uploadMesh(const Mesh& mesh) {
     auto gpu = std::make_unique<GpuMesh>();
     glGenVertexArrays(1, &gpu->vao);
@@ -51,8 +53,6 @@ std::unique_ptr<GpuMesh> uploadMesh(const Mesh& mesh) {
     glBindVertexArray(0);
     return gpu;
 }
-
-}  // namespace
 
 // Points the optional attributes `program` declares at `mesh`'s data (uploading it on first use)
 // or at a constant; returns the locations enabled, to disable after the draw.

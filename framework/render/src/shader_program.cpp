@@ -1,18 +1,26 @@
 // GLSL compile/link with structured logs; see shader_program.h.
 #include "shaderlab/render/shader_program.h"
 
+#include <xxhash.h>
+
 #include <cctype>
 #include <chrono>
 #include <climits>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <sstream>
 
 #include "gl_types.h"
+#include "grader/base/atomic_file.h"
 #include "shaderlab/feedback/glsl_explain.h"
 #include "shaderlab/gl/gl.h"
+#include "shaderlab/gl/gl_context.h"
 
 namespace shaderlab {
 
@@ -504,6 +512,46 @@ struct CompiledStage {
     std::size_t dropped = 0;  // messages of `parsed` left out, unexplained
 };
 
+// With Mesa's shader cache on (gl_context.h: useShaderCache), a stage Mesa compiled before is not
+// compiled again and leaves no log. The log of its first compile is kept beside the cache, named
+// by the text compiled, the stage and the driver: the path for `text`, or empty when the cache
+// is off.
+std::string keptLogPath(GLenum kind, const std::string& text) {
+    const std::string dir = shaderCacheDir();
+    if (dir.empty()) return {};
+    XXH3_state_t* state = XXH3_createState();
+    XXH3_128bits_reset(state);
+    for (GLenum name : {GLenum(GL_RENDERER), GLenum(GL_VERSION)}) {
+        const char* s = reinterpret_cast<const char*>(glGetString(name));
+        const std::string v = s ? s : "";
+        XXH3_128bits_update(state, v.c_str(), v.size() + 1);
+    }
+    XXH3_128bits_update(state, &kind, sizeof kind);
+    XXH3_128bits_update(state, text.data(), text.size());
+    const XXH128_hash_t h = XXH3_128bits_digest(state);
+    XXH3_freeState(state);
+    char name[40];
+    std::snprintf(name, sizeof name, "%016llx%016llx.log", static_cast<unsigned long long>(h.high64),
+                  static_cast<unsigned long long>(h.low64));
+    return dir + "/shaderlab-logs/" + name;
+}
+
+// The log kept for a stage, or the one it just gave kept (once; written whole or not at all).
+void keepOrRecallLog(const std::string& path, bool compiled, std::string* info_log) {
+    std::error_code ec;
+    if (!info_log->empty()) {
+        if (std::filesystem::exists(path, ec)) return;
+        std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+        std::string error;  // a log that cannot be kept costs the next run its warnings, no more
+        grader::writeFileAtomically(path, *info_log, &error);
+    } else if (compiled) {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) return;
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (text.size() <= kMaxLogBytes) *info_log = text;
+    }
+}
+
 CompiledStage compileStage(GLenum kind, const StageSource& source) {
     CompiledStage c;
     StageLog& log = c.log;
@@ -535,6 +583,10 @@ CompiledStage compileStage(GLenum kind, const StageSource& source) {
             buf.resize(cut == std::string::npos ? kMaxLogBytes : cut + 1);
         }
         log.info_log = buf;
+    }
+    if (!src.rejected) {
+        const std::string kept = keptLogPath(kind, src.text);
+        if (!kept.empty()) keepOrRecallLog(kept, ok == GL_TRUE, &log.info_log);
     }
     c.include_errors = src.errors;
     log.compiled = ok == GL_TRUE && src.errors.empty();

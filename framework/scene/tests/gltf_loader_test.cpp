@@ -405,6 +405,25 @@ TEST(GltfFeatures, NonIndexedPrimitiveGetsSequentialIndices) {
     EXPECT_EQ(scene.meshes[0].indices, (std::vector<std::uint32_t>{0, 1, 2}));
 }
 
+// TANGENT is read as the file gives it (w the handedness); a mesh without it gets generated
+// tangents, flagged so that the debug view can tell them apart (render/debug_view.h).
+TEST(GltfFeatures, TangentsFromTheFileAndGeneratedOnesAreToldApart) {
+    shaderlab::Scene scene;
+    const auto r = shaderlab::loadGltfScene(fixture("tangent_quads.gltf"), &scene);
+    ASSERT_TRUE(r.ok) << r.error;
+    ASSERT_EQ(scene.meshes.size(), 3u);
+    EXPECT_TRUE(scene.has_camera);
+    const glm::vec4 want[] = {{1, 0, 0, 1}, {0, 0, 0, 0}, {-1, 0, 0, -1}};
+    for (std::size_t m = 0; m < 3; ++m) {
+        const shaderlab::Mesh& mesh = scene.meshes[m];
+        ASSERT_EQ(mesh.tangents.size(), mesh.positions.size()) << mesh.name;
+        EXPECT_EQ(mesh.tangents_generated, m == 1) << mesh.name;
+        if (m == 1) continue;
+        for (const glm::vec4& t : mesh.tangents) EXPECT_EQ(t, want[m]) << mesh.name;
+    }
+    EXPECT_EQ(scene.meshes[1].name, "no_tangents");
+}
+
 TEST(GltfFeatures, SparseAccessorOverridesZeros) {
     Scene scene;
     const auto r = shaderlab::loadGltfScene(fixture("sparse.gltf"), &scene);

@@ -1,6 +1,7 @@
 // The shaderlab workbench page. It renders nothing itself: it shows the pictures and verdicts
 // `shaderlab serve` made with the grader's own render path, asks for a new view when the
-// camera is turned, and follows the server's events (one per change) to stay current.
+// camera is turned or a debug view of the vertex data is picked (the server draws it too), and
+// follows the server's events (one per change) to stay current.
 'use strict';
 
 const $ = (id) => document.getElementById(id);
@@ -21,7 +22,8 @@ const ui = {
 };
 
 // For scripts and tests: what the page shows, and when it last changed.
-window.workbench = { shownSeq: 0, shownKey: '', pictureShownAt: 0, stateVersion: 0, loads: 0, errorShown: '' };
+window.workbench = { shownSeq: 0, shownDebugSeq: 0, shownKey: '', pictureShownAt: 0, stateVersion: 0, loads: 0,
+  errorShown: '' };
 
 function el(tag, attrs, ...children) {
   const e = document.createElement(tag);
@@ -83,6 +85,7 @@ function render() {
   $('folder').textContent = s.lab.folder + ' (' + s.lab.files.join(', ') + ')';
   $('busy').textContent = s.busy ? s.busy + (s.busy_s > 2 ? ' (' + s.busy_s.toFixed(0) + ' s)' : '') + '…' : '';
   renderScenes(s);
+  renderDebug(s);
   renderError(s);
   renderImages(s);
   renderGrade(s);
@@ -101,6 +104,30 @@ function renderScenes(s) {
     : 'turned view (yaw ' + s.view.yaw.toFixed(0) + '°, pitch ' + s.view.pitch.toFixed(0) + '°, zoom ' +
       s.view.zoom.toFixed(2) + '): not what is graded';
   $('reset-view').classList.toggle('hidden', s.view.graded_view);
+}
+
+// The debug views the server offers, the one on, and what it could not show.
+function renderDebug(s) {
+  const sel = $('debug');
+  if (sel.options.length !== s.debug_views.length + 1) {
+    sel.replaceChildren(el('option', { value: 'off', text: "off: the lab's picture" }),
+      ...s.debug_views.map((v) => el('option', { value: v.name, text: v.name, title: v.label })));
+  }
+  if (document.activeElement !== sel) sel.value = s.view.debug;
+  const d = debugShown(s);
+  const notes = d ? d.notes.slice() : [];
+  if (s.view.debug !== 'off' && s.debug_error) notes.push(s.debug_error);
+  $('debug-notes').replaceChildren(...notes.map((n) => el('li', { text: n })));
+  $('debug-notes').classList.toggle('hidden', s.view.debug === 'off' || notes.length === 0);
+  for (const b of document.querySelectorAll('.modes button')) {
+    b.classList.toggle('on', b.dataset.mode === ui.mode && s.view.debug === 'off');
+  }
+}
+
+// The debug view to show for the scene on the page, when one is on and drawn.
+function debugShown(s) {
+  if (!s || s.view.debug === 'off' || !s.debug) return null;
+  return s.debug.view === s.view.debug && s.debug.scene === s.view.scene ? s.debug : null;
 }
 
 function diagnosticBlock(d) {
@@ -146,7 +173,7 @@ function renderImages(s) {
       verdictMark(img), title: img.vertex ? img.vertex + ' + ' + img.fragment : '' });
     if (img.index === shown && !ui.input) b.classList.add('on');
     if (img.verdict) b.classList.add(img.verdict.passed ? 'pass-mark' : 'fail-mark');
-    b.addEventListener('click', () => { ui.selected = img.index; ui.input = null; render(); });
+    b.addEventListener('click', () => { ui.selected = img.index; ui.input = null; setDebug('off'); render(); });
     return el('li', {}, b);
   }));
   const img = p.images[shown];
@@ -255,6 +282,13 @@ function loadImage(url) {
 
 // What is shown: [main picture URL, second picture URL (split), label].
 function pictureUrls() {
+  const s = ui.state;
+  if (s && s.view.debug !== 'off') {
+    const d = debugShown(s);
+    if (!d) return null;
+    return { a: '/picture/' + d.seq + '/debug/0.png', b: null, label: 'vertex data: ' + d.view + ' — ' + d.label,
+      index: 0, seq: d.seq, debug: d };
+  }
   const p = ui.state && ui.state.picture;
   if (!p) return null;
   const index = shownIndex(p);
@@ -262,7 +296,7 @@ function pictureUrls() {
   if (!img) return null;
   const base = '/picture/' + p.seq + '/';
   if (ui.input) {
-    if (ui.input.file !== undefined) return { a: base + 'file/' + ui.input.file + '.png', label: 'reads ' + ui.input.label, index: -1 };
+    if (ui.input.file !== undefined) return { a: base + 'file/' + ui.input.file + '.png', label: 'reads ' + ui.input.label, index: -1, seq: p.seq };
     const other = p.images[ui.input.image];
     return urlsFor(p, other, base, 'pass ' + img.pass + ' reads ' + ui.input.label);
   }
@@ -277,15 +311,20 @@ function urlsFor(p, img, base, label) {
   if (ui.mode === 'reference') { a = reference; note = reference ? '' : (p.reference_note || 'no reference'); }
   if (ui.mode === 'diff') { a = diff; note = diff ? '' : (img.has_reference ? 'judging…' : (p.reference_note || 'no reference')); }
   if (ui.mode === 'split') { b = reference; }
-  return { a: a || student, b, label: label + ' — ' + ui.mode + (note ? ' (' + note + '; your picture shown)' : ''), index: img.index, img };
+  return { a: a || student, b, label: label + ' — ' + ui.mode + (note ? ' (' + note + '; your picture shown)' : ''), index: img.index, seq: p.seq, img };
 }
 
 let drawing = 0;
 async function showPicture() {
   const p = ui.state && ui.state.picture;
-  renderVerdict(p, p ? p.images[shownIndex(p)] : null);
+  const debugOn = !!ui.state && ui.state.view.debug !== 'off';
+  renderVerdict(p, p && !debugOn ? p.images[shownIndex(p)] : null);
+  if (debugOn) $('verdict-summary').textContent = "A debug view of the scene's vertex data: not graded.";
   const urls = pictureUrls();
-  if (!urls) return;
+  if (!urls) {
+    if (debugOn) $('picture-label').textContent = 'drawing the ' + ui.state.view.debug + ' view…';
+    return;
+  }
   const key = urls.a + '|' + (urls.b || '') + '|' + ui.scale + '|' + ui.split;
   if (key === ui.shownKey) return;
   const ticket = ++drawing;
@@ -301,12 +340,26 @@ async function showPicture() {
   ui.pictures = { student: a, other: b };
   ui.shownKey = key;
   ui.shownIndex = urls.index;
+  ui.shownPictureSeq = urls.seq;
+  ui.shownDebug = !!urls.debug;
   draw();
   $('picture-label').textContent = urls.label;
+  $('picture-label').className = urls.debug ? 'debug-label' : '';
   const info = [];
-  info.push('rendered in ' + p.render_ms.toFixed(0) + ' ms');
-  if (p.latency_ms !== null) info.push('ready ' + p.latency_ms.toFixed(0) + ' ms after your save');
+  if (urls.debug) {
+    info.push('drawn in ' + urls.debug.render_ms.toFixed(0) + ' ms by the framework\'s own program');
+  } else {
+    info.push('rendered in ' + p.render_ms.toFixed(0) + ' ms');
+    if (p.latency_ms !== null) info.push('ready ' + p.latency_ms.toFixed(0) + ' ms after your save');
+  }
   $('picture-info').textContent = info.join('; ');
+  if (urls.debug) {
+    window.workbench.shownDebugSeq = urls.seq;
+    window.workbench.shownKey = key;
+    window.workbench.pictureShownAt = Date.now();
+    window.workbench.loads += 1;
+    return;
+  }
   window.workbench.shownSeq = p.seq;
   window.workbench.shownKey = key;
   window.workbench.pictureShownAt = Date.now();
@@ -344,24 +397,39 @@ function rgbaText(v) {
 }
 
 function inspect(ev) {
-  const p = ui.state && ui.state.picture;
-  if (!p || ui.shownIndex === undefined || ui.shownIndex < 0) return;
+  if (ui.shownPictureSeq === undefined || ui.shownIndex === undefined || ui.shownIndex < 0) return;
   const { x, y } = pixelAt(ev);
   clearTimeout(ui.pixelTimer);
   ui.pixelTimer = setTimeout(async () => {
-    const r = await fetch('/api/pixel/' + p.seq + '/' + ui.shownIndex + '/' + x + '/' + y);
+    const r = await fetch('/api/pixel/' + ui.shownPictureSeq + '/' + ui.shownIndex + '/' + x + '/' + y);
     if (!r.ok) return;
     const v = await r.json();
-    $('inspector').textContent = '(' + v.x + ', ' + v.y + ')  yours ' + rgbaText(v.student) + '   reference ' +
-      rgbaText(v.reference) + '   FLIP ' + (v.flip === null ? '—' : v.flip.toFixed(3));
+    // A debug view's pixel: its colour and what the server says it stands for.
+    $('inspector').textContent = v.debug !== undefined
+      ? '(' + v.x + ', ' + v.y + ')  colour ' + rgbaText(v.student) + '   ' + v.debug
+      : '(' + v.x + ', ' + v.y + ')  yours ' + rgbaText(v.student) + '   reference ' +
+        rgbaText(v.reference) + '   FLIP ' + (v.flip === null ? '—' : v.flip.toFixed(3));
   }, 30);
 }
 
-async function setView(scene, orbit) {
+// The view on the page: scene, camera and debug view (default: the one on now).
+async function setView(scene, orbit, debug) {
   ui.orbit = orbit;
+  if (debug === undefined) debug = ui.state ? ui.state.view.debug : 'off';
   const r = await fetch('/api/view', { method: 'POST', headers: { 'Content-Type': 'application/json' },
-    body: JSON.stringify({ scene, yaw: orbit.yaw, pitch: orbit.pitch, zoom: orbit.zoom }) });
+    body: JSON.stringify({ scene, yaw: orbit.yaw, pitch: orbit.pitch, zoom: orbit.zoom, debug }) });
   if (r.ok) refresh();
+}
+
+function setDebug(name) {
+  if (ui.state && name !== ui.state.view.debug) setView(ui.state.view.scene, ui.orbit, name);
+}
+
+// V: the next debug view, and after the last the lab's picture again.
+function nextDebug() {
+  if (!ui.state) return;
+  const names = ['off', ...ui.state.debug_views.map((v) => v.name)];
+  setDebug(names[(names.indexOf(ui.state.view.debug) + 1) % names.length]);
 }
 
 function scheduleView() {
@@ -373,6 +441,7 @@ function setup() {
   for (const b of document.querySelectorAll('.modes button')) b.addEventListener('click', () => setMode(b.dataset.mode));
   $('split').addEventListener('input', (e) => { ui.split = Number(e.target.value); ui.shownKey = ''; showPicture(); });
   $('scale').addEventListener('change', (e) => { ui.scale = Number(e.target.value); ui.shownKey = ''; showPicture(); });
+  $('debug').addEventListener('change', (e) => setDebug(e.target.value));
   $('scene').addEventListener('change', (e) => { ui.selected = -1; ui.input = null; setView(e.target.value, { yaw: 0, pitch: 0, zoom: 1 }); });
   $('reset-view').addEventListener('click', () => setView(ui.state.view.scene, { yaw: 0, pitch: 0, zoom: 1 }));
   const c = $('picture');
@@ -397,14 +466,17 @@ function setup() {
     const modes = { '1': 'student', '2': 'reference', '3': 'diff', '4': 'split' };
     if (modes[ev.key]) setMode(modes[ev.key]);
     if ((ev.key === 'r' || ev.key === 'R') && ui.state) setView(ui.state.view.scene, { yaw: 0, pitch: 0, zoom: 1 });
+    if (ev.key === 'v' || ev.key === 'V') nextDebug();
   });
   setMode('student');
   listen();
   refresh();
 }
 
+// A mode of the lab's picture; picking one turns a debug view off.
 function setMode(mode) {
   ui.mode = mode;
+  setDebug('off');
   for (const b of document.querySelectorAll('.modes button')) b.classList.toggle('on', b.dataset.mode === mode);
   $('split-row').classList.toggle('hidden', mode !== 'split');
   ui.shownKey = '';

@@ -54,7 +54,7 @@ Route routeRequest(const std::string& method, const std::string& path) {
         r.asset = parts[1];
         return only(get, RouteKind::Asset);
     }
-    // /picture/<seq>/<student|reference|diff|file>/<index>.png
+    // /picture/<seq>/<student|reference|diff|file|debug>/<index>.png
     if (parts.size() == 4 && parts[0] == "picture") {
         std::uint64_t seq = 0, index = 0;
         const std::string& last = parts[3];
@@ -62,7 +62,8 @@ Route routeRequest(const std::string& method, const std::string& path) {
             !number(last.substr(0, last.size() - 4), 4, &index))
             return r;
         const std::string& kind = parts[2];
-        if (kind != "student" && kind != "reference" && kind != "diff" && kind != "file") return r;
+        if (kind != "student" && kind != "reference" && kind != "diff" && kind != "file" && kind != "debug")
+            return r;
         r.seq = seq;
         r.picture = kind;
         r.index = static_cast<int>(index);

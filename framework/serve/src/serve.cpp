@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "connection_guard.h"
+#include "shaderlab/render/debug_view.h"
 #include "shaderlab/serve/routes.h"
 
 using json = nlohmann::json;
@@ -122,6 +123,7 @@ void Server::handle(const httplib::Request& req, httplib::Response& res) {
             const PictureKind kind = route.picture == "student"     ? PictureKind::Student
                                      : route.picture == "reference" ? PictureKind::Reference
                                      : route.picture == "diff"      ? PictureKind::Diff
+                                     : route.picture == "debug"     ? PictureKind::Debug
                                                                     : PictureKind::File;
             std::string png;
             if (!bench.picture(route.seq, kind, route.index, &png))
@@ -181,18 +183,22 @@ void Server::view(const httplib::Request& req, httplib::Response& res) {
     const json body = json::parse(req.body, nullptr, false);
     if (!body.is_object()) return sendError(res, 400, "the view is a JSON object");
     CameraOrbit orbit;
-    std::string scene;
+    std::string scene, debug_name;
     try {
         scene = body.value("scene", std::string());
+        debug_name = body.value("debug", std::string("off"));
         orbit.yaw_deg = body.value("yaw", 0.0f);
         orbit.pitch_deg = std::clamp(body.value("pitch", 0.0f), -89.0f, 89.0f);
         orbit.zoom = std::clamp(body.value("zoom", 1.0f), 0.1f, 10.0f);
     } catch (const json::exception&) {
-        return sendError(res, 400, "scene is a string; yaw, pitch and zoom are numbers");
+        return sendError(res, 400, "scene and debug are strings; yaw, pitch and zoom are numbers");
     }
+    DebugView debug = DebugView::Off;
+    if (!parseDebugView(debug_name, &debug))
+        return sendError(res, 400, "debug is one of " + debugViewNames(", "));
     if (!std::isfinite(orbit.yaw_deg)) orbit.yaw_deg = 0.0f;
     std::string error;
-    if (!bench.setView(scene, orbit, &error)) return sendError(res, 400, error);
+    if (!bench.setView(scene, orbit, debug, &error)) return sendError(res, 400, error);
     sendJson(res, {{"ok", true}, {"version", bench.version()}});
 }
 

@@ -1,13 +1,14 @@
 // The workbench's threads: the folder watch, and the render thread that asks the render server
-// for the student's picture of the view on the page, the reference's, and the lab's grade, in
-// that order of urgency (of each kind only the newest request waits: three quick saves give one
-// more picture, not three).
+// for the debug view on the page (when one is on), the student's picture of the view on the page,
+// the reference's, and the lab's grade, in that order of urgency (of each kind only the newest
+// request waits: three quick saves give one more picture, not three).
 #include <cstdio>
 #include <filesystem>
 
 #include "grader/metrics/heatmap.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/live/render_outcome.h"
+#include "shaderlab/render/debug_view.h"
 #include "workbench_detail.h"
 
 namespace fs = std::filesystem;
@@ -84,7 +85,8 @@ std::uint64_t Workbench::waitForChange(std::uint64_t seen, std::chrono::millisec
     return w.version;
 }
 
-bool Workbench::setView(const std::string& scene, const CameraOrbit& orbit, std::string* error) {
+bool Workbench::setView(const std::string& scene, const CameraOrbit& orbit, DebugView debug,
+                        std::string* error) {
     Impl& w = *impl_;
     bool known = false;
     for (const SceneSpec& s : w.opt.spec.scenes) known = known || s.name == scene;
@@ -93,10 +95,16 @@ bool Workbench::setView(const std::string& scene, const CameraOrbit& orbit, std:
         return false;
     }
     std::lock_guard<std::mutex> lock(w.m);
+    // Turning a debug view on or off draws no new picture of the lab's.
+    const bool only_debug = debug != w.debug && scene == w.scene && orbit == w.orbit;
     w.scene = scene;
     w.orbit = orbit;
-    w.want_student = true;
-    w.want_reference = !w.opt.reference_root.empty();
+    w.debug = debug;
+    if (!only_debug) {
+        w.want_student = true;
+        w.want_reference = !w.opt.reference_root.empty();
+    }
+    w.want_debug = debug != DebugView::Off;
     w.work.notify_all();
     w.bump();
     return true;
@@ -123,19 +131,27 @@ void Workbench::Impl::watchLoop() {
 
 void Workbench::Impl::renderLoop() {
     for (;;) {
-        enum { kStudent, kReference, kGrade } job;
+        enum { kDebug, kStudent, kReference, kGrade } job;
         std::string job_scene;
         CameraOrbit job_orbit;
+        DebugView job_debug = DebugView::Off;
         std::uint64_t job_generation = 0;
         std::int64_t save_ns = 0;
         {
             std::unique_lock<std::mutex> lock(m);
-            work.wait(lock, [this] { return stopping || want_student || want_reference || want_grade; });
+            work.wait(lock, [this] {
+                return stopping || want_debug || want_student || want_reference || want_grade;
+            });
             if (stopping) return;
             job_scene = scene;
             job_orbit = orbit;
+            job_debug = debug;
             job_generation = generation;
-            if (want_student) {
+            if (want_debug) {
+                job = kDebug;
+                want_debug = false;
+                busy = std::string("drawing the ") + debugViewName(debug) + " view, scene " + scene;
+            } else if (want_student) {
                 job = kStudent;
                 want_student = false;
                 save_ns = pending_save_ns;
@@ -153,6 +169,7 @@ void Workbench::Impl::renderLoop() {
             busy_since = Clock::now();
             bump();
         }
+        if (job == kDebug) renderDebug(job_scene, job_orbit, job_debug);
         if (job == kStudent) renderStudent(job_scene, job_orbit, job_generation, save_ns);
         if (job == kReference) renderReference(job_scene, job_orbit);
         if (job == kGrade) gradeLab(job_generation);
@@ -263,6 +280,52 @@ void Workbench::Impl::renderReference(const std::string& scene_name, const Camer
     }
     judge(snap);
     std::lock_guard<std::mutex> lock(m);
+    bump();
+}
+
+// The debug view on the page, unless the newest one drawn is of this view already. Its snapshot
+// holds the one image, no reference, and the notes of what it could not show.
+void Workbench::Impl::renderDebug(const std::string& scene_name, const CameraOrbit& view_orbit,
+                                  DebugView view) {
+    {
+        std::lock_guard<std::mutex> lock(m);
+        if (debug_snapshot && debug_snapshot->debug == view && debug_snapshot->scene == scene_name &&
+            debug_snapshot->orbit == view_orbit)
+            return;
+    }
+    viewer::RenderRequest request;
+    request.scene = scene_name;
+    request.orbit = view_orbit;
+    request.timeout_s = std::max(opt.view_timeout_s, 10.0);
+    request.debug_view = view;
+    auto r = std::make_shared<const IsolatedRender>(service->render(request));
+    if (r->status != IsolatedStatus::Ok || r->render.scenes.size() != 1 ||
+        r->render.scenes[0].passes.size() != 1) {
+        const std::string why = r->status == IsolatedStatus::Ok && !r->render.scenes.empty()
+                                    ? "the scene did not load: " + r->render.scenes[0].error
+                                    : std::string(isolatedStatusName(r->status)) + ": " + r->message;
+        std::lock_guard<std::mutex> lock(m);
+        debug_error = std::string("the ") + debugViewName(view) + " view was not drawn (" + why + ")";
+        bump();
+        return;
+    }
+    auto snap = std::make_shared<Snapshot>();
+    snap->scene = scene_name;
+    snap->orbit = view_orbit;
+    snap->debug = view;
+    snap->student = r;
+    snap->render_ms = r->render.scenes[0].render_ms;
+    ImageEntry e;
+    e.student = &r->render.scenes[0].passes[0];
+    snap->images.push_back(e);
+    snap->final_image = 0;
+    for (const Diagnostic& d : r->render.diagnostics)
+        if (d.severity == "note") snap->notes.push_back(d.message);
+    std::lock_guard<std::mutex> lock(m);
+    snap->seq = next_seq++;
+    debug_previous = debug_snapshot;
+    debug_snapshot = snap;
+    debug_error.clear();
     bump();
 }
 

@@ -61,6 +61,10 @@ struct Snapshot {
     int final_image = -1;
     double render_ms = 0.0;
     double latency_ms = -1.0;  // from the save that asked for it to the picture (-1: no save)
+    // A debug view's snapshot: which one (its one image has no reference and no pass), and what it
+    // could not show. Off: the lab's picture.
+    DebugView debug = DebugView::Off;
+    std::vector<std::string> notes;
 
     mutable std::mutex m;
     std::vector<std::shared_ptr<const Judgement>> judged;  // by image; empty until judged
@@ -89,7 +93,8 @@ struct Workbench::Impl {
     CameraOrbit orbit;
     std::uint64_t generation = 1;  // bumped by each settled change of the student's files
     std::int64_t pending_save_ns = 0;
-    bool want_student = false, want_reference = false, want_grade = false;
+    DebugView debug = DebugView::Off;  // the debug view the page shows (Off: the lab's picture)
+    bool want_student = false, want_reference = false, want_grade = false, want_debug = false;
     std::string busy;  // what the render thread is doing ("" when idle)
     Clock::time_point busy_since;
 
@@ -102,6 +107,9 @@ struct Workbench::Impl {
     std::string reference_error;
     std::map<std::string, std::shared_ptr<const std::vector<PassImage>>> goldens;  // by scene
     std::map<std::string, std::string> golden_errors;
+    std::shared_ptr<const Snapshot> debug_snapshot;  // the newest debug view drawn, and the one before
+    std::shared_ptr<const Snapshot> debug_previous;
+    std::string debug_error;                   // the last debug view that was not drawn, and why
     std::optional<RenderFailureInfo> failure;  // the last render that gave no picture
     nlohmann::json grade;                      // the lab's grade as report.json has it (null until the first)
     std::uint64_t grade_generation = 0;
@@ -119,11 +127,14 @@ struct Workbench::Impl {
     void renderStudent(const std::string& scene, const CameraOrbit& orbit, std::uint64_t generation,
                        std::int64_t save_ns);
     void renderReference(const std::string& scene, const CameraOrbit& orbit);
+    void renderDebug(const std::string& scene, const CameraOrbit& orbit, DebugView view);
     void gradeLab(std::uint64_t generation);
     std::shared_ptr<Snapshot> buildSnapshot(std::shared_ptr<const IsolatedRender> student,
                                             const std::string& scene, const CameraOrbit& orbit);
     void judge(const std::shared_ptr<Snapshot>& snap);
     std::shared_ptr<const grader::Image> inputFile(int index);
+    // The snapshot numbered `seq` among the newest pictures and debug views, or null.
+    std::shared_ptr<const Snapshot> findSnapshot(std::uint64_t seq) const;
 };
 
 std::string pictureKindName(PictureKind kind);

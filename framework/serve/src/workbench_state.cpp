@@ -1,10 +1,11 @@
 // What the page is told (the state as JSON) and shown (pictures encoded as PNG, values under the
-// pointer). Reads the snapshots the render thread publishes; renders nothing.
+// pointer). Reads the snapshots the render thread publishes, the debug views' too; renders nothing.
 #include <cmath>
 #include <filesystem>
 
 #include "grader/reports/report_images.h"
 #include "shaderlab/grading/grading.h"
+#include "shaderlab/render/debug_view.h"
 #include "workbench_detail.h"
 
 namespace fs = std::filesystem;
@@ -95,6 +96,21 @@ json pictureJson(const Snapshot& s) {
             {"images", images}};
 }
 
+// The newest debug view drawn: its picture's number, what it shows and what it could not.
+json debugJson(const Snapshot& s) {
+    const DebugViewInfo* info = debugViewInfo(s.debug);
+    const grader::Image& img = s.images.front().student->color;
+    return {{"seq", s.seq},
+            {"view", debugViewName(s.debug)},
+            {"label", info ? info->label : ""},
+            {"scene", s.scene},
+            {"orbit", {{"yaw", s.orbit.yaw_deg}, {"pitch", s.orbit.pitch_deg}, {"zoom", s.orbit.zoom}}},
+            {"width", img.width},
+            {"height", img.height},
+            {"render_ms", s.render_ms},
+            {"notes", s.notes}};
+}
+
 // The student's picture as the page shows it: alpha dropped (it is coverage, not transparency),
 // values clamped to 0..1, NaN and Inf in magenta as in the reports.
 grader::Image shownColour(const grader::Image& img) {
@@ -128,6 +144,8 @@ std::string pictureKindName(PictureKind kind) {
             return "diff";
         case PictureKind::File:
             return "file";
+        case PictureKind::Debug:
+            return "debug";
     }
     return "";
 }
@@ -140,6 +158,8 @@ json Workbench::state() const {
     json files = json::array();
     for (std::size_t i = 0; i < w.input_files.size(); ++i)
         files.push_back({{"index", i}, {"path", w.input_files[i]}});
+    json debug_views = json::array();
+    for (const DebugViewInfo& v : debugViews()) debug_views.push_back({{"name", v.name}, {"label", v.label}});
     json goals = json::array();
     for (const GoalSpec& g : w.opt.spec.goals)
         goals.push_back({{"id", g.id}, {"title", g.title}, {"points", g.points}, {"scenes", g.scenes}});
@@ -160,7 +180,11 @@ json Workbench::state() const {
           {"yaw", w.orbit.yaw_deg},
           {"pitch", w.orbit.pitch_deg},
           {"zoom", w.orbit.zoom},
-          {"graded_view", !w.orbit.any()}}},
+          {"graded_view", !w.orbit.any()},
+          {"debug", debugViewName(w.debug)}}},
+        {"debug_views", debug_views},
+        {"debug", w.debug_snapshot ? debugJson(*w.debug_snapshot) : json()},
+        {"debug_error", w.debug_error},
         {"generation", w.generation},
         {"busy", w.busy},
         {"busy_s", w.busy.empty() ? 0.0 : std::chrono::duration<double>(Clock::now() - w.busy_since).count()},
@@ -198,6 +222,13 @@ std::shared_ptr<const grader::Image> Workbench::Impl::inputFile(int index) {
     return img;
 }
 
+std::shared_ptr<const Snapshot> Workbench::Impl::findSnapshot(std::uint64_t seq) const {
+    std::lock_guard<std::mutex> lock(m);
+    for (const std::shared_ptr<const Snapshot>& s : {snapshot, previous, debug_snapshot, debug_previous})
+        if (s && s->seq == seq) return s;
+    return nullptr;
+}
+
 bool Workbench::picture(std::uint64_t seq, PictureKind kind, int index, std::string* png) {
     Impl& w = *impl_;
     if (kind == PictureKind::File) {
@@ -208,13 +239,10 @@ bool Workbench::picture(std::uint64_t seq, PictureKind kind, int index, std::str
         png->assign(bytes.begin(), bytes.end());
         return true;
     }
-    std::shared_ptr<const Snapshot> snap;
-    {
-        std::lock_guard<std::mutex> lock(w.m);
-        for (const std::shared_ptr<const Snapshot>& s : {w.snapshot, w.previous})
-            if (s && s->seq == seq) snap = s;
-    }
+    // A debug view's picture by the debug kind only, the lab's by the others.
+    const std::shared_ptr<const Snapshot> snap = w.findSnapshot(seq);
     if (!snap || index < 0 || index >= static_cast<int>(snap->images.size())) return false;
+    if ((snap->debug != DebugView::Off) != (kind == PictureKind::Debug)) return false;
     const std::string key = pictureKindName(kind) + "/" + std::to_string(index);
     {
         std::lock_guard<std::mutex> lock(snap->m);
@@ -226,7 +254,7 @@ bool Workbench::picture(std::uint64_t seq, PictureKind kind, int index, std::str
     }
     const ImageEntry& e = snap->images[static_cast<std::size_t>(index)];
     grader::Image picture;
-    if (kind == PictureKind::Student) {
+    if (kind == PictureKind::Student || kind == PictureKind::Debug) {
         picture = shownColour(e.student->color);
     } else if (kind == PictureKind::Reference) {
         if (!e.reference) return false;
@@ -251,18 +279,19 @@ bool Workbench::picture(std::uint64_t seq, PictureKind kind, int index, std::str
 }
 
 bool Workbench::pixel(std::uint64_t seq, int index, int x, int y, json* out) const {
-    const Impl& w = *impl_;
-    std::shared_ptr<const Snapshot> snap;
-    {
-        std::lock_guard<std::mutex> lock(w.m);
-        for (const std::shared_ptr<const Snapshot>& s : {w.snapshot, w.previous})
-            if (s && s->seq == seq) snap = s;
-    }
+    const std::shared_ptr<const Snapshot> snap = impl_->findSnapshot(seq);
     if (!snap || index < 0 || index >= static_cast<int>(snap->images.size())) return false;
     const ImageEntry& e = snap->images[static_cast<std::size_t>(index)];
     const grader::Image& mine = e.student->color;
     if (x < 0 || y < 0 || x >= mine.width || y >= mine.height) return false;
     *out = {{"x", x}, {"y", y}, {"student", rgba(mine, x, y)}, {"reference", json()}, {"flip", json()}};
+    if (snap->debug != DebugView::Off) {
+        const std::size_t at = static_cast<std::size_t>(y) * mine.width + x;
+        const bool covered = at >= e.student->coverage.size() || e.student->coverage[at] != 0;
+        (*out)["debug"] =
+            describeDebugPixel(snap->debug, mine.at(x, y, 0), mine.at(x, y, 1), mine.at(x, y, 2), covered);
+        return true;
+    }
     if (e.reference) (*out)["reference"] = rgba(e.reference->color, x, y);
     std::lock_guard<std::mutex> lock(snap->m);
     if (static_cast<std::size_t>(index) < snap->judged.size() &&

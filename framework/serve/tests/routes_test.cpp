@@ -27,6 +27,10 @@ TEST(Routes, PicturesAndPixelsByNumber) {
     EXPECT_EQ(p.seq, 17u);
     EXPECT_EQ(p.picture, "diff");
     EXPECT_EQ(p.index, 3);
+    const Route d = routeRequest("GET", "/picture/18/debug/0.png");
+    ASSERT_EQ(d.kind, RouteKind::Picture);
+    EXPECT_EQ(d.picture, "debug");
+    EXPECT_EQ(d.seq, 18u);
     const Route q = routeRequest("GET", "/api/pixel/5/2/100/37");
     ASSERT_EQ(q.kind, RouteKind::Pixel);
     EXPECT_EQ(q.seq, 5u);
@@ -57,6 +61,8 @@ TEST(Routes, HostilePathsReachNothing) {
                              "/picture/1/student/1.png.png",
                              "/picture/1/student/1",
                              "/picture/1/source/1.png",
+                             "/picture/1/debug/../0.png",
+                             "/picture/1/normals/0.png",
                              "/picture/x/student/1.png",
                              "/picture/1/student/99999.png",
                              "/picture/1234567890123456789/student/1.png",

@@ -1,5 +1,5 @@
-// Keys and mouse: the keys the panel lists (view mode, scene, image, input, split, reset,
-// render again, screenshot, quit) and orbit and zoom over the picture. What they change is
+// Keys and mouse: the keys the panel lists (view mode, debug view, scene, image, input, split,
+// reset, render again, screenshot, quit) and orbit and zoom over the picture. What they change is
 // picked up by the main loop; nothing is drawn here.
 #include <algorithm>
 #include <cmath>
@@ -10,6 +10,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "shaderlab/render/debug_view.h"
 #include "viewer_window.h"
 
 // Dear ImGui names keys with ImGuiKey from 1.87 on (1.90, Debian 13's, takes nothing else); 1.86,
@@ -25,10 +26,22 @@ namespace shaderlab::viewer::detail {
 void Viewer::handleKeys() {
     ImGuiIO& io = ImGui::GetIO();
     if (io.WantTextInput) return;
-    if (ImGui::IsKeyPressed(VIEWER_KEY(1, GLFW_KEY_1))) mode_ = ViewMode::Student;
-    if (ImGui::IsKeyPressed(VIEWER_KEY(2, GLFW_KEY_2))) mode_ = ViewMode::Reference;
-    if (ImGui::IsKeyPressed(VIEWER_KEY(3, GLFW_KEY_3))) mode_ = ViewMode::Diff;
-    if (ImGui::IsKeyPressed(VIEWER_KEY(4, GLFW_KEY_4))) mode_ = ViewMode::Split;
+    // 1 to 4 show the lab's picture in that mode; V steps through the debug views and back.
+    const auto pick = [this](ViewMode m) {
+        mode_ = m;
+        setDebug(DebugView::Off);
+    };
+    if (ImGui::IsKeyPressed(VIEWER_KEY(1, GLFW_KEY_1))) pick(ViewMode::Student);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(2, GLFW_KEY_2))) pick(ViewMode::Reference);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(3, GLFW_KEY_3))) pick(ViewMode::Diff);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(4, GLFW_KEY_4))) pick(ViewMode::Split);
+    if (ImGui::IsKeyPressed(VIEWER_KEY(V, GLFW_KEY_V), false)) {
+        const std::vector<DebugViewInfo>& views = debugViews();
+        std::size_t next = 0;  // Off -> the first view
+        for (std::size_t i = 0; i < views.size(); ++i)
+            if (views[i].view == debug_) next = i + 1;
+        setDebug(next < views.size() ? views[next].view : DebugView::Off);
+    }
     if (ImGui::IsKeyPressed(VIEWER_KEY(RightArrow, GLFW_KEY_RIGHT))) changeScene(1);
     if (ImGui::IsKeyPressed(VIEWER_KEY(LeftArrow, GLFW_KEY_LEFT))) changeScene(-1);
     const std::vector<PassImage>* mine = studentPasses();

@@ -18,11 +18,13 @@
 
 namespace shaderlab::viewer {
 
-enum JobKind { kStudent = 0, kReference = 1, kGrade = 2 };
+// kDebug: a debug view of the scene's vertex data (RenderRequest::debug_view).
+enum JobKind { kStudent = 0, kReference = 1, kGrade = 2, kDebug = 3 };
+constexpr int kJobKinds = 4;
 
 struct Job {
     JobKind kind = kStudent;
-    RenderRequest request;         // kStudent, kReference
+    RenderRequest request;         // kStudent, kReference, kDebug
     GradeRequest grade;            // kGrade
     std::uint64_t generation = 0;  // the files' version (student renders and grades)
     std::int64_t save_ns = 0;      // when the change that asked for it was saved (0: none)
@@ -30,14 +32,15 @@ struct Job {
 
 struct Finished {
     Job job;
-    IsolatedRender result;    // kStudent, kReference
+    IsolatedRender result;    // kStudent, kReference, kDebug
     grader::Report report;    // kGrade: one lab, when graded
     std::string grade_error;  // kGrade: why there is no report
 };
 
-// Renders and grades from a thread of its own, so the window never waits on a shader. The
-// student's picture goes first (it is what the student is waiting for), then the reference's,
-// then the grade of the whole lab, as the workbench orders them.
+// Renders and grades from a thread of its own, so the window never waits on a shader. A debug view
+// goes first (it is asked for only while it is on screen, and draws in milliseconds), then the
+// student's picture (what the student is waiting for), then the reference's, then the grade of the
+// whole lab, as the workbench orders them.
 class RenderQueue {
   public:
     RenderQueue(RenderService* service, std::function<void()> wake)
@@ -79,20 +82,23 @@ class RenderQueue {
             Job job;
             {
                 std::unique_lock<std::mutex> lock(m_);
-                cv_.wait(lock, [this] { return stop_ || pending_[0] || pending_[1] || pending_[2]; });
+                cv_.wait(lock, [this] {
+                    return stop_ || pending_[0] || pending_[1] || pending_[2] || pending_[3];
+                });
                 if (stop_) return;
-                std::optional<Job>& next = pending_[kStudent]     ? pending_[kStudent]
+                std::optional<Job>& next = pending_[kDebug]       ? pending_[kDebug]
+                                           : pending_[kStudent]   ? pending_[kStudent]
                                            : pending_[kReference] ? pending_[kReference]
                                                                   : pending_[kGrade];
                 job = std::move(*next);
                 next.reset();
                 running_ = true;
                 started_ = std::chrono::steady_clock::now();
-                running_what_ = job.kind == kGrade
-                                    ? "grading the lab as `check` does"
-                                    : (job.kind == kStudent ? "rendering your shaders, scene "
-                                                            : "rendering the reference, scene ") +
-                                          job.request.scene;
+                running_what_ =
+                    job.kind == kGrade   ? "grading the lab as `check` does"
+                    : job.kind == kDebug ? std::string("drawing the vertex data, scene ") + job.request.scene
+                    : job.kind == kStudent ? "rendering your shaders, scene " + job.request.scene
+                                           : "rendering the reference, scene " + job.request.scene;
             }
             Finished f;
             if (job.kind == kGrade) {
@@ -117,7 +123,7 @@ class RenderQueue {
     std::thread thread_;
     std::mutex m_;
     std::condition_variable cv_;
-    std::optional<Job> pending_[3];
+    std::optional<Job> pending_[kJobKinds];
     std::vector<Finished> done_;
     bool stop_ = false;
     bool running_ = false;

@@ -1,4 +1,5 @@
-// The panel of controls on the left of the window: the view mode, the scene and camera, the
+// The panel of controls on the left of the window: the view mode, the debug view of the vertex
+// data (viewer_debug.cpp), the scene and camera, the
 // images of the scene and the textures a pass reads, the lab's grade (points, goals not met,
 // failing scenes and their known-mistake hints, in `check`'s words), the verdict grading would
 // give this scene, and the keys. It reads what the other parts worked out; it judges, grades and
@@ -18,7 +19,7 @@ namespace shaderlab::viewer::detail {
 namespace {
 
 // Room at the bottom of the controls for the list of keys.
-constexpr float kKeysHeight = 172.0f;
+constexpr float kKeysHeight = 190.0f;
 // At most this much of the panel for the goals and scenes the grade misses (it scrolls).
 constexpr float kGradeHeight = 190.0f;
 
@@ -37,14 +38,17 @@ void Viewer::drawControls(float width, float height) {
     ImGui::Separator();
 
     int mode = static_cast<int>(mode_);
-    ImGui::RadioButton("student [1]", &mode, 0);
+    // A mode of the lab's picture, picked, shows the lab's picture again.
+    bool picked = ImGui::RadioButton("student [1]", &mode, 0);
     ImGui::SameLine();
-    ImGui::RadioButton("reference [2]", &mode, 1);
-    ImGui::RadioButton("diff [3]", &mode, 2);
+    picked |= ImGui::RadioButton("reference [2]", &mode, 1);
+    picked |= ImGui::RadioButton("diff [3]", &mode, 2);
     ImGui::SameLine();
-    ImGui::RadioButton("split [4]", &mode, 3);
+    picked |= ImGui::RadioButton("split [4]", &mode, 3);
+    if (picked) setDebug(DebugView::Off);
     mode_ = static_cast<ViewMode>(mode);
     if (mode_ == ViewMode::Split) ImGui::SliderFloat("split", &split_, 0.0f, 1.0f, "%.2f");
+    drawDebugControls();
 
     ImGui::Separator();
     if (ImGui::BeginCombo("scene", sceneName().c_str())) {
@@ -224,6 +228,7 @@ void Viewer::drawKeys() {
                         opt_.reference_root.empty() ? "stored golden images" : "reference solution");
     ImGui::TextDisabled("keys");
     ImGui::TextDisabled("1 2 3 4   student, reference, diff, split");
+    ImGui::TextDisabled("V         vertex data: normals, tangents, ...");
     ImGui::TextDisabled("[ ]       move the split");
     ImGui::TextDisabled("left/right scene    up/down image");
     ImGui::TextDisabled("Tab       textures the pass reads");

@@ -1,6 +1,7 @@
 // The picture on the right of the window: the image on screen as a texture, in the mode chosen
-// (student, reference, diff heat map, split), the pixel inspector under it and the last failed
-// render's messages. It picks and judges nothing (viewer_shown.cpp) and handles no keys.
+// (student, reference, diff heat map, split; or a debug view, viewer_debug.cpp), the pixel
+// inspector under it and the last failed render's messages. It picks and judges nothing
+// (viewer_shown.cpp) and handles no keys.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -78,7 +79,10 @@ void Viewer::drawPicture(float x, float width, float height) {
         ImGui::Text("%s (%.1f s)", busy.c_str(), busy_s);
     else
         ImGui::TextDisabled("%s", status_line_.empty() ? "starting" : status_line_.c_str());
-    ImGui::Text("%s", shown_.label.c_str());
+    if (debug_ != DebugView::Off)
+        drawDebugLabel();
+    else
+        ImGui::Text("%s", shown_.label.c_str());
 
     const float error_h = error_title_.empty() ? 0.0f : std::min(200.0f, height * 0.35f);
     const float inspector_h = 80.0f;
@@ -95,6 +99,7 @@ void Viewer::drawPicture(float x, float width, float height) {
 // split), scaled to fit `area_w` x `area_h` (a whole number of screen pixels per image pixel
 // when it fits at least once), or why there is none.
 void Viewer::drawImage(float area_w, float area_h) {
+    if (debug_ != DebugView::Off) return drawDebugImage(area_w, area_h);
     const bool want_reference = mode_ == ViewMode::Reference;
     const Texture* tex = nullptr;
     std::string missing;
@@ -111,44 +116,61 @@ void Viewer::drawImage(float area_w, float area_h) {
         if (!tex) missing = shown_pending_ ? "comparing..." : "no diff: it needs both pictures";
     }
     if (!missing.empty() && !(mode_ == ViewMode::Split && tex)) {
-        ImGui::Dummy(ImVec2(area_w, area_h * 0.4f));
-        ImGui::TextWrapped("%s", missing.c_str());
-        ImGui::Dummy(ImVec2(area_w, area_h * 0.6f - ImGui::GetTextLineHeight()));
-        image_w_ = 0;
-    } else {
-        const float w = static_cast<float>(tex->width()), h = static_cast<float>(tex->height());
-        float scale = std::min(area_w / w, area_h / h);
-        scale = scale >= 1.0f ? std::floor(scale) : scale;
-        const ImVec2 size(w * scale, h * scale);
-        const ImVec2 p0 = ImGui::GetCursorScreenPos();
-        ImGui::InvisibleButton("image", size);
-        ImDrawList* dl = ImGui::GetWindowDrawList();
-        if (mode_ == ViewMode::Split && shown_.reference) {
-            const float sx = p0.x + size.x * split_;
-            dl->AddImage(tex_student_.id(), p0, ImVec2(sx, p0.y + size.y), ImVec2(0, 0), ImVec2(split_, 1));
-            dl->AddImage(tex_reference_.id(), ImVec2(sx, p0.y), ImVec2(p0.x + size.x, p0.y + size.y),
-                         ImVec2(split_, 0), ImVec2(1, 1));
-            dl->AddLine(ImVec2(sx, p0.y), ImVec2(sx, p0.y + size.y), IM_COL32(255, 255, 0, 255), 1.0f);
-            dl->AddText(ImVec2(p0.x + 4, p0.y + 4), IM_COL32(255, 255, 0, 255), "student");
-            dl->AddText(ImVec2(p0.x + size.x - 68, p0.y + 4), IM_COL32(255, 255, 0, 255), "reference");
-        } else {
-            dl->AddImage(tex->id(), p0, ImVec2(p0.x + size.x, p0.y + size.y));
-        }
-        image_min_ = p0;
-        image_scale_ = scale;
-        image_w_ = tex->width();
-        image_h_ = tex->height();
-        orbitByMouse();
+        drawMissing(missing, area_w, area_h);
+        return;
     }
+    placeImage(*tex, area_w, area_h);
+    if (mode_ == ViewMode::Split && shown_.reference) {
+        const ImVec2 p0 = image_min_;
+        const ImVec2 size(static_cast<float>(image_w_) * image_scale_,
+                          static_cast<float>(image_h_) * image_scale_);
+        const float sx = p0.x + size.x * split_;
+        ImDrawList* dl = ImGui::GetWindowDrawList();
+        dl->AddImage(tex_reference_.id(), ImVec2(sx, p0.y), ImVec2(p0.x + size.x, p0.y + size.y),
+                     ImVec2(split_, 0), ImVec2(1, 1));
+        dl->AddLine(ImVec2(sx, p0.y), ImVec2(sx, p0.y + size.y), IM_COL32(255, 255, 0, 255), 1.0f);
+        dl->AddText(ImVec2(p0.x + 4, p0.y + 4), IM_COL32(255, 255, 0, 255), "student");
+        dl->AddText(ImVec2(p0.x + size.x - 68, p0.y + 4), IM_COL32(255, 255, 0, 255), "reference");
+    }
+}
+
+// `tex` scaled to fit `area_w` x `area_h` (a whole number of screen pixels per image pixel when it
+// fits at least once), where the mouse turns the camera; remembered for the inspector and the
+// screenshots.
+void Viewer::placeImage(const Texture& tex, float area_w, float area_h) {
+    const float w = static_cast<float>(tex.width()), h = static_cast<float>(tex.height());
+    float scale = std::min(area_w / w, area_h / h);
+    scale = scale >= 1.0f ? std::floor(scale) : scale;
+    const ImVec2 size(w * scale, h * scale);
+    const ImVec2 p0 = ImGui::GetCursorScreenPos();
+    ImGui::InvisibleButton("image", size);
+    ImGui::GetWindowDrawList()->AddImage(tex.id(), p0, ImVec2(p0.x + size.x, p0.y + size.y));
+    image_min_ = p0;
+    image_scale_ = scale;
+    image_w_ = tex.width();
+    image_h_ = tex.height();
+    orbitByMouse();
+}
+
+// Why there is no picture, in the middle of the area.
+void Viewer::drawMissing(const std::string& why, float area_w, float area_h) {
+    ImGui::Dummy(ImVec2(area_w, area_h * 0.4f));
+    ImGui::TextWrapped("%s", why.c_str());
+    ImGui::Dummy(ImVec2(area_w, area_h * 0.6f - ImGui::GetTextLineHeight()));
+    image_w_ = 0;
 }
 
 // Pixel inspector: the values under the mouse, and the figures of the image on screen.
 void Viewer::drawInspector() {
     ImGui::Separator();
     const ImVec2 mouse = ImGui::GetIO().MousePos;
+    const int px = static_cast<int>(std::floor((mouse.x - image_min_.x) / image_scale_));
+    const int py = static_cast<int>(std::floor((mouse.y - image_min_.y) / image_scale_));
+    if (debug_ != DebugView::Off) {
+        if (image_w_ > 0) drawDebugInspector(px, py);
+        return;
+    }
     if (image_w_ > 0 && shown_.student) {
-        const int px = static_cast<int>(std::floor((mouse.x - image_min_.x) / image_scale_));
-        const int py = static_cast<int>(std::floor((mouse.y - image_min_.y) / image_scale_));
         if (px >= 0 && py >= 0 && px < image_w_ && py < image_h_) {
             ImGui::Text("pixel %d, %d", px, py);
             ImGui::Text("student   %s", pixelText(*shown_.student, px, py).c_str());

@@ -56,6 +56,7 @@ void Viewer::requestStudent(std::int64_t save_ns) {
     job.save_ns = save_ns;
     queue_->submit(std::move(job));
     requestReference();
+    requestDebug();
 }
 
 void Viewer::requestReference() {
@@ -168,6 +169,8 @@ void Viewer::takeResults() {
             onStudent(f);
         } else if (f.job.kind == kGrade) {
             onGrade(f);
+        } else if (f.job.kind == kDebug) {
+            onDebug(f);
         } else {
             reference_error_.clear();
             if (f.result.status != IsolatedStatus::Ok)

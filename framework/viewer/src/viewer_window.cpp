@@ -197,6 +197,7 @@ int Viewer::run() {
         std::fflush(stdout);
         requestStudent(0);
         requestGrade();
+        setDebug(opt_.debug_view);
         int frames_after_first = 0;
         std::vector<double> frame_ms;
         bool screenshot_due = false;
@@ -229,7 +230,7 @@ int Viewer::run() {
 
             // Scripts want both pictures, judged, and the grade: count frames once all are in.
             const bool settled = got_first_result_ && (opt_.reference_root.empty() || reference_) &&
-                                 !analysing() && !grading();
+                                 !analysing() && !grading() && debugSettled();
             if (settled) ++frames_after_first;
             const bool done_frames = opt_.frames > 0 && frames_after_first >= opt_.frames;
             const bool done_reloads =

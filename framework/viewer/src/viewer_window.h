@@ -1,8 +1,8 @@
 // The student's window as one class, Viewer, whose parts live in files of their own: the main
 // loop and the window (viewer_window.cpp), renders and grades asked and taken
 // (viewer_renders.cpp), the image on screen and its judgement (viewer_shown.cpp), keys and mouse
-// (viewer_input.cpp), the panel of controls, verdict and grade (viewer_panels.cpp) and the picture
-// (viewer_picture.cpp).
+// (viewer_input.cpp), the panel of controls, verdict and grade (viewer_panels.cpp), the picture
+// (viewer_picture.cpp) and the debug view of the scene's vertex data (viewer_debug.cpp).
 // Private to the viewer; runViewer (viewer.h) is its only way in.
 #pragma once
 
@@ -117,8 +117,20 @@ class Viewer {
     // viewer_picture.cpp
     void drawPicture(float x, float width, float height);
     void drawImage(float area_w, float area_h);
+    void placeImage(const Texture& tex, float area_w, float area_h);
+    void drawMissing(const std::string& why, float area_w, float area_h);
     void drawInspector();
     void drawErrors(float height, float error_h);
+    // viewer_debug.cpp
+    void setDebug(DebugView view);
+    void requestDebug();
+    void onDebug(const Finished& f);
+    bool debugSettled() const;
+    const PassImage* debugImage() const;
+    void drawDebugControls();
+    void drawDebugLabel();
+    void drawDebugImage(float area_w, float area_h);
+    void drawDebugInspector(int x, int y);
 
     ViewerOptions opt_;
     const LabSpec& spec_;
@@ -144,6 +156,17 @@ class Viewer {
     int reloads_shown_ = 0;
     std::string error_title_, error_text_;  // the last failed render (cleared by a good one)
     std::string last_printed_error_;
+
+    // The debug view of the vertex data: which one is on (Off: the lab's picture), and the last
+    // one drawn, for what.
+    DebugView debug_ = DebugView::Off;
+    std::shared_ptr<const IsolatedRender> debug_render_;
+    DebugView debug_render_view_ = DebugView::Off;
+    std::string debug_render_scene_;
+    CameraOrbit debug_render_orbit_;
+    std::string debug_error_;               // the last debug render that failed (cleared by a good one)
+    std::vector<std::string> debug_notes_;  // what it could not show (a mesh without tangents)
+    Texture tex_debug_;
 
     std::shared_ptr<const IsolatedRender> reference_;
     std::string reference_scene_;

@@ -65,10 +65,11 @@ ReportMetrics metricsFrom(const json& j) {
     return m;
 }
 
-// The three pictures every graded image has, then the optional ones when they exist.
+// The two pictures every graded image has, then the ones a failing image adds when they exist.
 json images(const std::string& student, const std::string& reference, const std::string& diff,
             const std::string& signed_image, const std::string& zoom) {
-    json j = {{"student", student}, {"reference", reference}, {"diff", diff}};
+    json j = {{"student", student}, {"reference", reference}};
+    if (!diff.empty()) j["diff"] = diff;
     if (!signed_image.empty()) j["signed_difference"] = signed_image;
     if (!zoom.empty()) j["zoom"] = zoom;
     return j;

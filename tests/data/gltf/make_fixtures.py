@@ -230,6 +230,40 @@ def modes_and_camera():
     write_json("modes_and_camera.gltf", doc)
 
 
+def tangent_quads():
+    """Three quads facing +Z, side by side, each a mesh of its own, seen by a camera at (0, 0, 6):
+    "right_handed" (x -2..-0.8) with TANGENT (1, 0, 0, +1) and u along +x; "no_tangents"
+    (x -0.6..0.6) with the same texture coordinates and no TANGENT; "mirrored" (x 0.8..2) with u
+    running along -x and TANGENT (-1, 0, 0, -1). In all three v runs down the quad (glTF's
+    convention), so the bitangent cross(n, t.xyz) * w points up (+y). The debug view's test
+    (framework/render/tests/debug_view_test.cpp) reads them."""
+    b = Builder()
+    meshes, nodes = [], []
+    for name, x0, x1, mirrored, tangents in (("right_handed", -2.0, -0.8, False, True),
+                                             ("no_tangents", -0.6, 0.6, False, False),
+                                             ("mirrored", 0.8, 2.0, True, True)):
+        pos = b.view(floats([x0, -0.8, 0, x1, -0.8, 0, x1, 0.8, 0, x0, 0.8, 0]), ARRAY_BUFFER)
+        nrm = b.view(floats(QUAD_NRM), ARRAY_BUFFER)
+        u = [1, 0, 0, 1] if mirrored else [0, 1, 1, 0]
+        uv = b.view(floats([u[0], 1, u[1], 1, u[2], 0, u[3], 0]), ARRAY_BUFFER)
+        idx = b.view(struct.pack("<6H", *QUAD_IDX), ELEMENT_ARRAY_BUFFER)
+        attributes = {
+            "POSITION": b.accessor(pos, FLOAT, 4, "VEC3", min=[x0, -0.8, 0], max=[x1, 0.8, 0]),
+            "NORMAL": b.accessor(nrm, FLOAT, 4, "VEC3"),
+            "TEXCOORD_0": b.accessor(uv, FLOAT, 4, "VEC2"),
+        }
+        if tangents:
+            t = [-1, 0, 0, -1] if mirrored else [1, 0, 0, 1]
+            attributes["TANGENT"] = b.accessor(b.view(floats(t * 4), ARRAY_BUFFER), FLOAT, 4, "VEC4")
+        prim = {"attributes": attributes, "indices": b.accessor(idx, USHORT, 6, "SCALAR")}
+        meshes.append({"name": name, "primitives": [prim]})
+        nodes.append({"mesh": len(nodes), "name": name})
+    nodes.append({"camera": 0, "translation": [0, 0, 6], "name": "camera"})
+    doc = b.gltf(meshes, nodes, [0, 1, 2, 3],
+                 cameras=[{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 20}}])
+    write_json("tangent_quads.gltf", doc)
+
+
 def triangle_glb():
     b = Builder()
     prim = triangle(b, [0, 1, 2])
@@ -257,6 +291,7 @@ def main():
     quad_with_index_type("indices_uint.gltf", UINT)
     simple("non_indexed.gltf", indices=None)
     node_transforms()
+    tangent_quads()
     sparse()
     many_instances()
     texcoords_normalized()

@@ -46,6 +46,19 @@ struct ContextResult {
 // Mesa skips compiling a shader it has cached and then reports none of its warnings.
 ContextResult createHeadlessContext(Backend backend);
 
+// Turns Mesa's on-disk shader cache on for this process and the render children it starts, in
+// `dir` (a folder of the run's own: never the user's home), before any context exists. llvmpipe
+// then keeps the machine code it compiles for a program, so the next run that draws the same
+// shader (the lab's own passes in every grade, a student's unchanged file in the next check)
+// skips the compile. Mesa also skips the GLSL compile then and reports no warnings: the render
+// keeps each stage's log beside the cache (shaderCacheDir(), shader_program.cpp) and reports the
+// kept one, so feedback stays the same from run to run.
+void useShaderCache(const std::string& dir);
+
+// The folder useShaderCache() chose for this process (inherited by a render child through its
+// environment); empty when the cache is off.
+std::string shaderCacheDir();
+
 // Loads GL entry points through `get_proc` into the loader and checks the version (>= 3.3
 // core); for window hosts, whose toolkit supplies get_proc (glfwGetProcAddress has this shape).
 using GlProc = void (*)();

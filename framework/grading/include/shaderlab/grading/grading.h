@@ -30,6 +30,11 @@ struct GradeOptions {
     // Where <lab>/golden/ and <lab>/hints/ are read from; empty: each lab's own folder.
     std::string goldens_root;
     bool hints = true;  // look for a known mistake (mistake_hints.h) behind every failing scene
+    // Reference renders kept between runs (shaderlab/batch/reference_cache.h). Asked, for a lab
+    // whose reference solution is present, once the student's render says which renderer drew it:
+    // the root of <lab>/golden/ and <lab>/hints/ holding that reference's images, which are then
+    // read instead of rendering the reference again; empty: render it. May be empty.
+    std::function<std::string(const LabSpec& spec, const std::string& renderer)> reference_cache;
 };
 
 // Called after each lab is graded with the report so far (its last lab is the new one), so the

@@ -24,6 +24,9 @@ struct RenderRequest {
     std::string scene;             // one scene of the lab
     CameraOrbit orbit;
     double timeout_s = 5.0;
+    // Not Off: the scene's vertex data instead of the lab's passes (shaderlab/render/debug_view.h);
+    // shader_dir is then not read.
+    DebugView debug_view = DebugView::Off;
 };
 
 // A whole lab graded as `check` grades it (gradeSubmission with the same options), for the

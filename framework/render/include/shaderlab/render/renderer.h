@@ -64,6 +64,10 @@ struct StandIn {
     grader::Image image;
 };
 
+// Instead of the lab's passes, a picture of each scene's vertex data drawn by the framework's own
+// program (debug_view.h says what each shows). Off: the lab's passes.
+enum class DebugView { Off, Normals, Tangents, Bitangents, Handedness, Uv, UvChecker };
+
 struct RenderOptions {
     bool keep_all_passes = false;          // read back ungraded passes too (debugging a multi-pass lab)
     std::vector<std::string> only_scenes;  // empty: all scenes of the lab
@@ -81,6 +85,9 @@ struct RenderOptions {
     // drew, wherever one is given (standInSource in lab_spec.h says which it wants). Empty: the
     // pipeline as it is.
     std::vector<StandIn> stand_ins;
+    // Not Off: renderLab draws this debug view of every scene (renderDebugView, debug_view.h) and
+    // reads none of the submission's files.
+    DebugView debug_view = DebugView::Off;
 };
 
 // Renders `spec` with the shader files found in `shader_dir` (the submission's lab folder,

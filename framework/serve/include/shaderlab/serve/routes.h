@@ -15,7 +15,7 @@ struct Route {
     RouteKind kind = RouteKind::NotFound;
     std::string asset;      // Asset: the asset's name ("workbench.js")
     std::uint64_t seq = 0;  // Picture, Pixel: the snapshot
-    std::string picture;    // Picture: student | reference | diff | file
+    std::string picture;    // Picture: student | reference | diff | file | debug
     int index = 0;          // Picture, Pixel: the image (or input file)
     int x = 0, y = 0;       // Pixel
 };

@@ -6,7 +6,9 @@
 //
 // What the page asks for is served from immutable snapshots: a snapshot is one render of one view,
 // numbered (`seq`), with its pictures encoded on demand and kept with it; a page that asks for a
-// picture of a snapshot that is gone gets nothing, and asks for the newest state again.
+// picture of a snapshot that is gone gets nothing, and asks for the newest state again. A debug
+// view of the scene's vertex data (shaderlab/render/debug_view.h), when the page asks for one, is a
+// snapshot of its own, numbered alike, drawn by the same render server.
 #pragma once
 
 #include <chrono>
@@ -34,8 +36,8 @@ struct WorkbenchOptions {
     std::chrono::milliseconds poll{20};                                 // the folder watch
 };
 
-// What a picture request names: one image of a snapshot, in one form.
-enum class PictureKind { Student, Reference, Diff, File };
+// What a picture request names: one image of a snapshot, in one form (Debug: of a debug view's).
+enum class PictureKind { Student, Reference, Diff, File, Debug };
 
 class Workbench {
   public:
@@ -58,13 +60,15 @@ class Workbench {
     std::uint64_t waitForChange(std::uint64_t seen, std::chrono::milliseconds timeout);
 
     // Shows `scene` (a scene of the lab) through `orbit` (the graded camera turned); renders again.
-    bool setView(const std::string& scene, const CameraOrbit& orbit, std::string* error);
+    // `debug` not Off: the page shows that debug view of the vertex data instead of the lab's picture
+    // (the lab's picture is still rendered when the scene or camera changes, for the verdict).
+    bool setView(const std::string& scene, const CameraOrbit& orbit, DebugView debug, std::string* error);
 
     // One picture of snapshot `seq`, PNG-encoded: image `index` of its list (File: input file
     // `index` of the lab). False when the snapshot is gone or has no such picture.
     bool picture(std::uint64_t seq, PictureKind kind, int index, std::string* png);
     // The values at pixel (x, y) of image `index` of snapshot `seq`: student and reference RGBA
-    // as rendered (floats) and the FLIP error there.
+    // as rendered (floats) and the FLIP error there; of a debug view's, its RGB and what it reads.
     bool pixel(std::uint64_t seq, int index, int x, int y, nlohmann::json* out) const;
 
     struct Impl;

@@ -4,7 +4,9 @@
 // the submission's lab folder changes. The window is glue: GLFW for the window, Dear ImGui for
 // the panels, the grader for every number. At start and after each change it also grades the
 // whole lab as `check` does (same limits, same report), for the points, the goals not met and
-// the known-mistake hints, in `check`'s words; it writes no report.
+// the known-mistake hints, in `check`'s words; it writes no report. Instead of the lab's picture it
+// can show a debug view of the scene's vertex data (normals, tangents, texture coordinates: see
+// shaderlab/render/debug_view.h), drawn by the same render server.
 #pragma once
 
 #include <string>
@@ -34,7 +36,8 @@ struct ViewerOptions {
     int exit_after_reloads = 0;
     std::string screenshot;         // at exit: the picture as the window shows it, one pixel per image pixel
     std::string screenshot_window;  // at exit: the whole window, panels included
-    std::string view_mode = "student";  // student | reference | diff | split
+    std::string view_mode = "student";      // student | reference | diff | split
+    DebugView debug_view = DebugView::Off;  // first picture: a debug view (Off: the lab's picture)
     int width = 1180, height = 760;
 };
 
