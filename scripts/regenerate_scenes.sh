@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# Regenerates the bundled glTF scenes in labs/scenes/ with shaderlab_make_scenes, and the sky
-# cube map in labs/shared/sky/ with shaderlab_make_sky.
+# Regenerates the bundled glTF scenes in labs/scenes/ with shaderlab_make_scenes, the labs'
+# generated assets in labs/<id>/assets/ (shaderlab_make_scenes --lab-assets), and the sky cube map
+# in labs/shared/sky/ with shaderlab_make_sky.
 # Usage: scripts/regenerate_scenes.sh [build_dir]   (default: ./build)
 # Builds the tool in build_dir if needed (configuring the build dir when it has never been
 # configured), removes the scene files it owns from labs/scenes/ so that a scene dropped from
-# the tool does not linger, and writes the new ones. Commit the result; the ScenesFresh test
-# fails while the committed scenes differ from what the tool writes.
+# the tool does not linger, and writes the new ones. A lab's generated assets folder belongs to
+# the tool as a whole: it is replaced, so a file dropped from the tool (or put there by hand)
+# does not linger either. Commit the result; the ScenesFresh and LabAssets.Fresh tests fail
+# while the committed files differ from what the tool writes.
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -27,6 +30,22 @@ mkdir -p "$out"
 find "$out" -maxdepth 1 -type f \( -name '*.gltf' -o -name '*.glb' -o -name '*.bin' \) -delete
 "$tool" "$out"
 echo "scenes written to $out"
+
+# Each lab's generated assets: written into a scratch folder, then each labs/<id>/assets/ the tool
+# writes is replaced by its fresh copy.
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+"$tool" --lab-assets "$scratch" >/dev/null
+for made in "$scratch"/*/assets; do
+    id="$(basename "$(dirname "$made")")"
+    if [[ ! -d "$repo/labs/$id" ]]; then
+        echo "regenerate_scenes.sh: the tool writes assets for $id, which has no folder in labs/" >&2
+        exit 1
+    fi
+    rm -rf "$repo/labs/$id/assets"
+    cp -r "$made" "$repo/labs/$id/assets"
+    echo "assets written to labs/$id/assets"
+done
 
 # The sky cube map shared by the course (labs/shared/sky/), from the analytic sky.
 sky_tool="$(find "$build" -type f -name shaderlab_make_sky -perm -u+x | head -n 1)"

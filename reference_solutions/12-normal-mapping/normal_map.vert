@@ -1,0 +1,36 @@
+#version 330 core
+// Reference solution, 12-normal-mapping, vertex stage.
+//
+// The surface frame to world space, each vector by the matrix that keeps its meaning: the normal
+// by the normal matrix (the inverse transpose of the model matrix, so it stays perpendicular to
+// the surface under a non-uniform scale), the tangent by the model matrix itself (it lies in the
+// surface, like a triangle's edge). The handedness w is passed on untouched (glTF 2.0, 3.7.2.1
+// TANGENT: "the W component is a sign value (-1 or +1) indicating handedness of the tangent basis").
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_texcoord;
+in vec4 a_tangent;  // xyz: unit tangent along +u, object space; w: +1 or -1
+
+uniform mat4 u_model;          // object to world
+uniform mat4 u_view;           // world to eye
+uniform mat4 u_projection;     // eye to clip
+uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model))), provided by the framework
+
+out vec3 v_world_position;
+out vec3 v_world_normal;   // unit normal, world space
+out vec4 v_world_tangent;  // xyz: unit tangent, world space; w: the handedness, passed on as it is
+out vec2 v_texcoord;
+
+void main() {
+    vec4 world = u_model * vec4(a_position, 1.0);
+    v_world_position = world.xyz;
+    v_texcoord = a_texcoord;
+
+    // A normal stays perpendicular to the surface with the inverse transpose; a tangent lies in
+    // the surface, like an edge, and moves with the model matrix itself.
+    v_world_normal = normalize(u_normal_matrix * a_normal);
+    v_world_tangent = vec4(normalize(mat3(u_model) * a_tangent.xyz), a_tangent.w);
+
+    gl_Position = u_projection * u_view * world;
+}
