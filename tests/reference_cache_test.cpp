@@ -162,4 +162,21 @@ TEST_F(ReferenceCache, WarningsSurviveTheShaderCache) {
     EXPECT_GT(mesa_files, 0u);
 }
 
+TEST_F(ReferenceCache, ShaderCacheFolderIsMadeEvenWithoutAReference) {
+    // Mesa makes only the last folder of its cache path: a --cache folder that does not exist
+    // yet, on a run that keeps no reference (the goldens are used), must still get its cache.
+    const fs::path cache = tmp_ / "not" / "yet" / "there";
+    const shaderlab_test::CliRun r = run("goldens", "grade " + (kRoot / "reference_solutions").string() +
+                                                        " --lab 01-phong --no-reference --cache " +
+                                                        cache.string() + " --out " + (tmp_ / "out").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find("disabling"), std::string::npos) << r.output;
+    std::size_t mesa_files = 0;
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(cache / "shader-cache", ec); !ec && it != fs::end(it);
+         it.increment(ec))
+        mesa_files += it->is_regular_file();
+    EXPECT_GT(mesa_files, 0u) << "no shader cache under " << cache;
+}
+
 }  // namespace

@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <vector>
 
 #include "osmesa_api.h"
@@ -358,6 +359,10 @@ bool loadGl(GetProcFn get_proc, GlInfo* info, std::string* error) {
 }
 
 void useShaderCache(const std::string& dir) {
+    // Mesa makes only the last folder of the path, and turns its cache off for good when it
+    // cannot: the whole path is made here.
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
     setenv("MESA_SHADER_CACHE_DIR", dir.c_str(), 1);
     setenv("MESA_SHADER_CACHE_DISABLE", "false", 1);
     // Each edit of a student's file adds an entry; Mesa drops the oldest beyond this size.
