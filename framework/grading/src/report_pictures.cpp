@@ -66,6 +66,24 @@ ShownPictures writeReportPictures(const PicturePlace& place, const GradedImage& 
     const fs::path& out_dir = place.out_dir;
     const fs::path base = fs::path(place.lab) / place.scene;
     const std::string suffix = place.final_image ? "" : "." + g.id;
+    const fs::path student_rel = base / ("student" + suffix + ".png");
+    const fs::path reference_rel = base / ("reference" + suffix + ".png");
+    const bool golden_png = place.reference_source != "reference_solutions" && !g.hdr;
+    const std::string golden = golden_png
+                                   ? goldenPath(place.stored_dir, place.scene, g.id, place.final_image, false)
+                                   : std::string();
+    // A passing image is never the one a known mistake explains, and the report shows it as the
+    // student's picture alone (report_markup.cpp): its difference pictures would be drawn and
+    // encoded for nobody. One identical to a stored reference (in the display range, where the
+    // picture is the image) is that file, copied, not encoded again.
+    if (v.passed) {
+        if (out_dir.empty()) return {};
+        if (!golden.empty() && std::isinf(v.frame.psnr_db) && v.nan_count + v.inf_count == 0) {
+            rp->student_image = copyOrWriteImage(golden, mine, out_dir, student_rel, errors);
+            rp->reference_image = copyOrWriteImage(golden, theirs, out_dir, reference_rel, errors);
+            return {};
+        }
+    }
     // The pictures show what was compared: HDR images over the same scale.
     grader::Image shown_mine = mine, shown_theirs = theirs;
     if (g.hdr && v.hdr_scale > 1.0) {
@@ -78,21 +96,9 @@ ShownPictures writeReportPictures(const PicturePlace& place, const GradedImage& 
     grader::Image picture = grader::markNonFinite(shown_mine);
     // A grade without pictures (the workbench's verdict) needs only what was shown, for the hints.
     if (out_dir.empty()) return {std::move(picture), std::move(shown_theirs)};
-    const bool golden_png = place.reference_source != "reference_solutions" && !g.hdr;
-    const std::string golden = golden_png
-                                   ? goldenPath(place.stored_dir, place.scene, g.id, place.final_image, false)
-                                   : std::string();
-    // An image identical to a stored reference is that file: copied, not encoded again.
-    const bool identical = std::isinf(v.frame.psnr_db) && v.nan_count + v.inf_count == 0;
-    rp->student_image =
-        identical && !golden.empty()
-            ? copyOrWriteImage(golden, picture, out_dir, base / ("student" + suffix + ".png"), errors)
-            : writeImage(picture, out_dir, base / ("student" + suffix + ".png"), errors);
-    rp->reference_image =
-        copyOrWriteImage(golden, shown_theirs, out_dir, base / ("reference" + suffix + ".png"), errors);
-    // The report shows a passing image as the student's picture alone (report_markup.cpp): its
-    // difference pictures would be drawn and encoded for nobody.
-    if (v.passed) return {std::move(picture), std::move(shown_theirs)};
+    rp->student_image = writeImage(picture, out_dir, student_rel, errors);
+    rp->reference_image = copyOrWriteImage(golden, shown_theirs, out_dir, reference_rel, errors);
+    if (v.passed) return {};
     grader::HeatmapConfig hc;
     hc.outline = v.mismatches.empty() ? nullptr : &v.mismatches;
     const grader::Image heat = grader::diffHeatmap(v.flip_map, mine.width, mine.height, hc);
