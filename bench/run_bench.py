@@ -4,14 +4,18 @@
 Called by scripts/bench.sh after the build (see there); Python standard library only, plots by
 gnuplot when it is installed. Usage:
 
-    run_bench.py --build BUILD --out WORKDIR [--quick]
+    run_bench.py --build BUILD --out WORKDIR [--quick] [--baseline SHADERLAB [--baseline-name NAME]]
 
 What it measures (all on this machine, the grade on llvmpipe with its default threads):
   * process start (`shaderlab --help`) and `compare` of two images at 8x8, 256x256 and 512x512,
     as whole processes, with the dynamic loader's statistics;
   * grading each lab of reference_solutions on its own, against the stored goldens and against
     the reference rendered anew, broken down by phase through SHADERLAB_TIMINGS
-    (framework/base/include/shaderlab/base/timings.h);
+    (framework/base/include/shaderlab/base/timings.h), with --no-cache: nothing kept between runs;
+  * with the caches kept between runs (--cache, in the work folder): grading against the goldens
+    beside rendering the same labs, `check` from a save to its verdict, and `batch` throughput on
+    distinct correct submissions and on a mixed corpus; with --baseline, the same for an older
+    binary (on its own commit's course) beside each figure;
   * bench_metrics (Google Benchmark): the metrics at 512x512 and over image sizes;
   * bench_tessellation: sphere tessellation against a double-precision ray cast;
   * bloom_kernel.py: blur taps and pyramid levels against an exact Gaussian;
@@ -183,8 +187,10 @@ def grade_breakdown(shaderlab, work, start_ms, labs):
         if tfile.exists():
             tfile.unlink()
         out = work / ("grade-" + lab)
+        # --no-cache: every shader compiled and every reference rendered, as in each run before the
+        # caches (the caches' effect is measured by cached_runs()).
         wall, r = timed([shaderlab, "grade", str(ROOT / "reference_solutions"), "--out", str(out),
-                         "--no-reference", "--lab", lab], env={"SHADERLAB_TIMINGS": str(tfile)})
+                         "--no-reference", "--no-cache", "--lab", lab], env={"SHADERLAB_TIMINGS": str(tfile)})
         rows = parse_timings(tfile)
         s = lambda phase, detail=None: sum(x["ms"] for x in rows if x["phase"] == phase and
                                            (detail is None or x["detail"] == detail))
@@ -205,7 +211,7 @@ def grade_breakdown(shaderlab, work, start_ms, labs):
         ph["report"] = max(0.0, wall - start_ms - s("lab"))
         passed = r.returncode == 0
         wall_ref, r2 = timed([shaderlab, "grade", str(ROOT / "reference_solutions"), "--out",
-                              str(work / ("grade-ref-" + lab)), "--lab", lab])
+                              str(work / ("grade-ref-" + lab)), "--no-cache", "--lab", lab])
         result.append({"lab": lab, "wall_ms": wall, "phases": ph, "scenes": len(scenes), "passed": passed,
                        "compiles": len([x for x in rows if x["phase"] == "compile"]),
                        "with_reference_ms": wall_ref, "with_reference_passed": r2.returncode == 0})
@@ -217,7 +223,8 @@ def starter_hints(shaderlab, work):
     """What reading each lab's known-mistake pictures costs, from grading the starter code (which
     fails, so the hints are read): the time a passing lab no longer spends."""
     tfile = work / "timings-starter.tsv"
-    run([shaderlab, "grade", str(ROOT / "labs"), "--out", str(work / "grade-starter"), "--no-reference"],
+    run([shaderlab, "grade", str(ROOT / "labs"), "--out", str(work / "grade-starter"), "--no-reference",
+         "--no-cache"],
         env={"SHADERLAB_TIMINGS": str(tfile)})
     rows = parse_timings(tfile)
     loads = [x["ms"] for x in rows if x["phase"] == "hints" and x["detail"] == "load"]
@@ -367,6 +374,264 @@ def unneeded_passes():
 
 
 # ---------------------------------------------------------------------------------------------
+# The caches kept between runs (`--cache`), against a baseline binary
+
+
+def binary_info(exe, name):
+    """What a shaderlab binary offers and which course it grades. A baseline built in a tree of its
+    own commit (TREE/build/framework/shaderlab) grades that tree's labs, reference_solutions and
+    corpus: an older program need not read today's lab.json."""
+    exe = Path(exe).resolve()
+    tree = exe.parents[2] if len(exe.parents) > 2 else ROOT
+    course = tree if (tree / "labs").is_dir() and (tree / "reference_solutions").is_dir() else ROOT
+    grade_help = run([str(exe), "grade", "--help"], check=False).stdout
+    batch_help = run([str(exe), "batch", "--help"], check=False).stdout
+    commit = run(["git", "-C", str(course), "rev-parse", "--short", "HEAD"], check=False).stdout.strip()
+    return {"name": name, "exe": str(exe), "course": str(course), "course_commit": commit or "unknown",
+            "caches": "--no-cache" in grade_help, "batch_cache": "--cache" in batch_help,
+            "labs": sorted(p.parent.name for p in (course / "labs").glob("*/lab.json"))}
+
+
+def student_files(course, lab):
+    return json.loads((Path(course) / "labs" / lab / "lab.json").read_text())["student_files"]
+
+
+def cache_env(cache):
+    """Mesa's on-disk shader cache in `cache`, as `--cache DIR` turns it on (gl_context.h:
+    useShaderCache); `render` has no --cache flag, and the baseline none at all."""
+    return {"MESA_SHADER_CACHE_DISABLE": "false", "MESA_SHADER_CACHE_DIR": str(cache / "shader-cache"),
+            "MESA_SHADER_CACHE_MAX_SIZE": "256M"}
+
+
+def new_cache(path):
+    # Made beforehand: Mesa creates only the last folder of MESA_SHADER_CACHE_DIR, and a grade
+    # against the goldens never creates DIR itself, so without this its shader cache stays off.
+    (path / "shader-cache").mkdir(parents=True, exist_ok=True)
+    return path
+
+
+def quantile(xs, q):
+    """Linear interpolation between the nearest ranks (statistics.quantiles' inclusive method)."""
+    xs = sorted(xs)
+    pos = q * (len(xs) - 1)
+    lo = int(pos)
+    hi = min(lo + 1, len(xs) - 1)
+    return xs[lo] + (xs[hi] - xs[lo]) * (pos - lo)
+
+
+def copy_submission(course, dest, comment=None, labs=None):
+    """reference_solutions of `course` copied to `dest`; with `comment`, a line of it appended to
+    every student file of `labs`, so the folder is a student's and no other submission's."""
+    shutil.copytree(Path(course) / "reference_solutions", dest)
+    for lab in labs or []:
+        for f in student_files(course, lab):
+            p = dest / lab / f
+            p.write_bytes(p.read_bytes() + b"\n// " + comment.encode() + b"\n")
+    return dest
+
+
+def grade_render_ratio(b, work, repeat):
+    """`render` and `grade --no-reference` of the same labs, both with a warm shader cache (one run of
+    each first): one process per lab, then all labs in one process; medians of `repeat`."""
+    tag, course, exe = b["tag"], Path(b["course"]), b["exe"]
+    cache = new_cache(work / (tag + "-ratio-cache"))
+    env = cache_env(cache)
+    ref, labs_dir = str(course / "reference_solutions"), str(course / "labs")
+
+    def render(labs, out):
+        return [exe, "render", ref, "--labs", labs_dir, "--out", str(out)] + [a for l in labs for a in ("--lab", l)]
+
+    def grade(labs, out):
+        flags = ["--cache", str(cache)] if b["caches"] else []
+        return ([exe, "grade", ref, "--labs", labs_dir, "--no-reference", "--out", str(out)] + flags +
+                [a for l in labs for a in ("--lab", l)])
+
+    def pair(labs, name):
+        r_ms, g_ms, passed = [], [], True
+        for _ in range(repeat):
+            # Alternated, so that other work on the machine slows both alike.
+            r_ms.append(timed(render(labs, work / (tag + "-render-" + name)), env)[0])
+            t, r = timed(grade(labs, work / (tag + "-grade-" + name)), env)
+            g_ms.append(t)
+            passed = passed and r.returncode == 0
+        scenes = 0
+        report = work / (tag + "-grade-" + name) / "report.json"
+        if report.exists():
+            scenes = sum(len(l.get("scenes", [])) for l in json.loads(report.read_text()).get("labs", []))
+        return {"lab": name, "render_ms": statistics.median(r_ms), "grade_ms": statistics.median(g_ms),
+                "scenes": scenes, "passed": passed}
+
+    run(render(b["labs"], work / (tag + "-render-prime")), env)
+    run(grade(b["labs"], work / (tag + "-grade-prime")), env)
+    rows = [pair([lab], lab) for lab in b["labs"]]
+    for r in rows:
+        log("%s %s: render %.0f ms, grade %.0f ms" % (tag, r["lab"], r["render_ms"], r["grade_ms"]))
+    whole = pair(b["labs"], "all")
+    log("%s all labs: render %.0f ms, grade %.0f ms" % (tag, whole["render_ms"], whole["grade_ms"]))
+    return {"labs": rows, "all": whole, "repeat": repeat}
+
+
+def non_identical_images(report):
+    if not report.exists():
+        return 0
+    labs = json.loads(report.read_text()).get("labs", [])
+    return sum(1 for l in labs for s in l.get("scenes", []) if not (s.get("metrics") or {}).get("identical", True))
+
+
+def pick_alternative(b, work):
+    """The first correct alternative (corpus kind "alternative") of 02-toon, then 01-phong, whose
+    images are not all identical to the reference's: identical images are the cheap case."""
+    course = Path(b["course"])
+    cache = new_cache(work / (b["tag"] + "-pick-cache"))
+    for lab in ("02-toon", "01-phong"):
+        cases = course / "tests" / "corpus" / lab / "cases.json"
+        if not cases.exists():
+            continue
+        for c in json.loads(cases.read_text()).get("cases", []):
+            if c.get("kind") != "alternative":
+                continue
+            sub = alternative_submission(course, work / ("pick-" + c["name"]), lab, c["name"])
+            out = work / ("pick-out-" + c["name"])
+            r = run([b["exe"], "check", lab, "--submission", str(sub), "--labs", str(course / "labs"), "--out",
+                     str(out), "--cache", str(cache)])
+            differing = non_identical_images(out / "report.json")
+            if r.returncode == 0 and differing:
+                log("check: alternative %s/%s has %d images not identical to the reference's" %
+                    (lab, c["name"], differing))
+                return {"lab": lab, "case": c["name"], "differing": differing}
+    return None
+
+
+def alternative_submission(course, dest, lab, case, corpus_root=None):
+    """reference_solutions of `course` with a corpus case's files (from `corpus_root`, default the
+    same course) laid over one lab's."""
+    if dest.exists():
+        shutil.rmtree(dest)
+    copy_submission(course, dest)
+    for f in (Path(corpus_root or course) / "tests" / "corpus" / lab / case).iterdir():
+        if f.is_file():
+            shutil.copy(f, dest / lab / f.name)
+    return dest
+
+
+def check_latency(b, work, repeat, alternative):
+    """`shaderlab check LAB` from a save to its verdict: each run first changes a comment in the
+    student's file, as a save does, then times the whole process. One untimed run first."""
+    tag, course, exe = b["tag"], Path(b["course"]), b["exe"]
+    sub = copy_submission(course, work / (tag + "-check-sub"))
+    cache = new_cache(work / (tag + "-check-cache"))
+    if b["caches"]:
+        conditions = [("warm", ["--cache", str(cache)]), ("cold", ["--no-cache"])]
+    else:
+        conditions = [("as built", [])]
+
+    def series(lab, submission, flags):
+        path = submission / lab / student_files(course, lab)[0]
+        original = path.read_bytes()
+        times, passed = [], True
+        for i in range(repeat + 1):
+            path.write_bytes(original + b"\n// edit %d\n" % i)
+            t, r = timed([exe, "check", lab, "--submission", str(submission), "--labs", str(course / "labs"),
+                          "--out", str(work / (tag + "-check-out"))] + flags)
+            if i:
+                times.append(t)
+            passed = passed and r.returncode == 0
+        path.write_bytes(original)
+        return {"median_ms": statistics.median(times), "p95_ms": quantile(times, 0.95), "runs": len(times),
+                "passed": passed}
+
+    rows = []
+    for lab in ("01-phong", "02-toon"):
+        if lab not in b["labs"]:
+            continue
+        for cond, flags in conditions:
+            rows.append(dict(series(lab, sub, flags), lab=lab, case="reference, one comment changed",
+                             condition=cond))
+            log("%s check %s (%s): median %.0f ms" % (tag, lab, cond, rows[-1]["median_ms"]))
+    if alternative and alternative["lab"] in b["labs"]:
+        lab, case = alternative["lab"], alternative["case"]
+        # The baseline's own copy of the case where its corpus has one, else this repository's.
+        corpus_root = course if (course / "tests" / "corpus" / lab / case).is_dir() else ROOT
+        alt_sub = alternative_submission(course, work / (tag + "-check-alt"), lab, case, corpus_root)
+        cond, flags = conditions[0]
+        rows.append(dict(series(lab, alt_sub, flags), lab=lab, case="alternative " + case, condition=cond))
+        log("%s check %s %s (%s): median %.0f ms" % (tag, lab, case, cond, rows[-1]["median_ms"]))
+    return rows
+
+
+def batch_summary(out):
+    """Lab gradings as summary.json reports them (labs with a status: not those of a submission
+    refused whole, such as a broken zip), and how many passed."""
+    path = out / "summary.json"
+    if not path.exists():
+        return {"submissions": 0, "gradings": 0, "passed": 0}
+    subs = json.loads(path.read_text()).get("submissions", [])
+    labs = [l for s in subs for l in (s.get("labs") or {}).values() if l.get("status")]
+    return {"submissions": len(subs), "gradings": len(labs),
+            "passed": sum(1 for l in labs if l.get("status") == "passed")}
+
+
+def batch_throughput(b, work, count, mixed_count=20):
+    """`shaderlab batch` with the reference renders already cached (one batch of a single other
+    submission into the same --cache first): `count` distinct correct submissions, then the mixed
+    corpus of scripts/make-batch-corpus.sh (`mixed_count`: it needs 20 to hold every kind)."""
+    tag, course, exe = b["tag"], Path(b["course"]), b["exe"]
+    cache = new_cache(work / (tag + "-batch-cache"))
+    flags = ["--labs", str(course / "labs")] + (["--cache", str(cache)] if b["batch_cache"] else [])
+    prime = work / (tag + "-batch-prime")
+    copy_submission(course, prime / "primer", "bench: the submission that fills the cache", b["labs"])
+    run([exe, "batch", str(prime), "--out", str(work / (tag + "-batch-prime-out"))] + flags)
+
+    def timed_batch(subs, name):
+        out = work / (tag + "-batch-out-" + name)
+        t, r = timed([exe, "batch", str(subs), "--out", str(out)] + flags)
+        s = batch_summary(out)
+        m = re.search(r"(\d+) worker runs", r.stdout + r.stderr)
+        s.update(wall_s=t / 1000.0, per_minute=s["gradings"] / (t / 60000.0),
+                 worker_runs=int(m.group(1)) if m else None)
+        log("%s batch %s: %d lab gradings in %.1f s, %.0f per minute" %
+            (tag, name, s["gradings"], s["wall_s"], s["per_minute"]))
+        return s
+
+    distinct = work / (tag + "-batch-distinct")
+    for i in range(count):
+        copy_submission(course, distinct / ("student%02d" % i), "bench: student %d" % i, b["labs"])
+    out = {"distinct": timed_batch(distinct, "distinct"), "count": count, "mixed_count": mixed_count}
+    mixed = work / (tag + "-batch-mixed")
+    script = course / "scripts" / "make-batch-corpus.sh"
+    run(["bash", str(script if script.exists() else ROOT / "scripts" / "make-batch-corpus.sh"), str(mixed), str(mixed_count)])
+    out["mixed"] = timed_batch(mixed, "mixed")
+    return out
+
+
+def cached_runs(shaderlab, baseline, work, quick):
+    """Grade against render, check latency and batch throughput for this binary and the baseline."""
+    res = {"cores": os.cpu_count(), "binaries": {}}
+    binaries = [("new", binary_info(shaderlab, "this commit"))]
+    if baseline:
+        binaries.append(("baseline", binary_info(baseline["path"], baseline["name"])))
+    alternative = pick_alternative(dict(binaries[0][1], tag="new"), work)
+    res["alternative"] = alternative
+    for tag, b in binaries:
+        b["tag"] = tag
+        log("%s: %s grading %s" % (tag, b["exe"], b["course"]))
+        try:
+            b["ratio"] = grade_render_ratio(b, work, 1 if quick else 3)
+            b["check"] = check_latency(b, work, 5 if quick else 15, alternative)
+            # --quick: 6 distinct submissions, enough for a rate (each grades every lab) in a third of the time.
+            b["batch"] = batch_throughput(b, work, 6 if quick else 20)
+        except RuntimeError as e:
+            if tag == "new":
+                raise
+            # A baseline that cannot grade its course leaves its columns empty, not the page unwritten.
+            res["baseline_error"] = "%s: %s" % (b["name"], str(e)[-400:].strip())
+            log("baseline not measured: " + res["baseline_error"])
+            continue
+        res["binaries"][tag] = b
+    return res
+
+
+# ---------------------------------------------------------------------------------------------
 # Plots (gnuplot, SVG) and the page
 
 
@@ -449,6 +714,182 @@ def fmt(v, digits=1):
     return ("%%.%df" % digits) % v
 
 
+# The sections on the caches kept between runs (cached_runs()); the baseline's figure beside each
+# new one, or "not measured".
+NOT_MEASURED = "not measured"
+RATIO_TARGET = 1.3
+CHECK_TARGET_MS = 400.0
+BATCH_TARGET = 400.0
+
+
+def cached_parts(res):
+    c = res.get("cached") or {}
+    bins = c.get("binaries") or {}
+    return c, bins.get("new"), bins.get("baseline")
+
+
+def ratio_of(row):
+    return row["grade_ms"] / max(row["render_ms"], 1e-9)
+
+
+def cached_targets(res):
+    """The Targets table's rows for the three targets of the caches."""
+    c, new, base = cached_parts(res)
+    if not new:
+        return []
+    bname = base["name"] if base else None
+    out = []
+    r = new["ratio"]
+    ratios = [ratio_of(x) for x in r["labs"]]
+    whole = ratio_of(r["all"])
+    beside = "; %s: %.2fx" % (bname, ratio_of(base["ratio"]["all"])) if base else "; baseline " + NOT_MEASURED
+    out.append("| grading against the goldens: at most %.1fx rendering the same labs (all labs in one process, "
+               "shader cache warm) | %.2fx (one process per lab: %.2fx to %.2fx)%s | %s |" %
+               (RATIO_TARGET, whole, min(ratios), max(ratios), beside, "yes" if whole <= RATIO_TARGET else "no"))
+    warm = {x["lab"]: x for x in new["check"] if x["condition"] == "warm" and x["case"].startswith("reference")}
+    old = {x["lab"]: x for x in (base["check"] if base else []) if x["case"].startswith("reference")}
+    now = ", ".join("%s %.2f s" % (lab, warm[lab]["median_ms"] / 1000.0) for lab in sorted(warm))
+    beside = ("; %s: " % bname + ", ".join("%.2f s" % (old[lab]["median_ms"] / 1000.0) for lab in sorted(old))
+              if old else "; baseline " + NOT_MEASURED)
+    met = bool(warm) and all(x["median_ms"] <= CHECK_TARGET_MS for x in warm.values())
+    out.append("| `check` of one lab, save to verdict, caches warm: median at most %.1f s on 01-phong and 02-toon "
+               "| %s%s | %s |" % (CHECK_TARGET_MS / 1000.0, now, beside, "yes" if met else "no"))
+    d = new["batch"]["distinct"]
+    beside = ("; %s: %.0f" % (bname, base["batch"]["distinct"]["per_minute"]) if base
+              else "; baseline " + NOT_MEASURED)
+    out.append("| `batch` of distinct correct submissions, references cached, %d cores: at least %.0f lab "
+               "gradings per minute | %.0f per minute%s | %s |" %
+               (c.get("cores", 0), BATCH_TARGET, d["per_minute"], beside,
+                "yes" if d["per_minute"] >= BATCH_TARGET else "no"))
+    return out
+
+
+def cached_sections(res):
+    c, new, base = cached_parts(res)
+    if not new:
+        return []
+    bname = base["name"] if base else "baseline"
+    L = []
+    L.append("## With the caches kept between runs\n")
+    L.append("`grade` and `check` keep the reference's renders and Mesa's compiled shaders in `--cache DIR` "
+             "(default `out/.shaderlab` beside labs/; `--no-cache` keeps nothing), and `batch` keeps the compiled "
+             "shaders in its state folder or `--cache DIR` too. Every cache below is a folder of this run's "
+             "work folder, never the repository's out/.\n")
+    if base:
+        scenes = lambda b: sum(x["scenes"] for x in b["ratio"]["labs"])
+        L.append("Beside each figure, **%s** (`%s`), run on this machine in the same run, on the course of its own "
+                 "commit (%s: %d labs, %d graded scenes, against %d labs and %d scenes here: an older program need "
+                 "not read today's lab.json, so per-lab figures compare programs and course together). It has no "
+                 "`--cache` or `--no-cache` for `grade`, `render` and `check` and is called without them (Mesa's "
+                 "shader cache is off in it unless the environment turns it on); its `batch` keeps reference "
+                 "renders in `--cache` and gets the same one as this commit's.\n" %
+                 (bname, base["exe"], base["course_commit"], len(base["labs"]), scenes(base), len(new["labs"]),
+                  scenes(new)))
+    elif c.get("baseline_error"):
+        L.append("The baseline could not be measured, so its columns say *%s*: %s\n" %
+                 (NOT_MEASURED, c["baseline_error"].replace("\n", " ").replace("|", "/")))
+    else:
+        L.append("No baseline in this run, so its columns say *%s*: `bash scripts/bench.sh --baseline-commit "
+                 "604cdf7` builds one (or `--baseline PATH` takes a binary) and measures it beside this one.\n" %
+                 NOT_MEASURED)
+
+    # Grade against render
+    r = new["ratio"]
+    L.append("### Grading against rendering\n")
+    L.append("`shaderlab render reference_solutions --lab L` against `shaderlab grade reference_solutions "
+             "--no-reference --lab L` (the stored goldens), whole processes, alternated, median of %d; one process "
+             "per lab, then all labs in one process. Both with Mesa's on-disk shader cache warm (one run of each "
+             "first): the grade through `--cache DIR`, and `render`, which has no such flag, through "
+             "`MESA_SHADER_CACHE_DISABLE=false` and `MESA_SHADER_CACHE_DIR=DIR/shader-cache` in its environment, "
+             "the same folder, so like is compared with like; the baseline gets those variables for both commands. "
+             "What grading adds to rendering: reading the goldens, the metrics, the report's pictures and files. "
+             "Target: at most %.1fx.\n" % (r["repeat"], RATIO_TARGET))
+    L.append("| lab | scenes | render | grade | grade / render | at most %.1fx | %s: render | grade | grade / render |"
+             % (RATIO_TARGET, bname))
+    L.append("|---|---|---|---|---|---|---|---|---|")
+    old = {x["lab"]: x for x in base["ratio"]["labs"]} if base else {}
+    for x in r["labs"] + [dict(r["all"], lab="**all, one process**")]:
+        o = base["ratio"]["all"] if (base and x["lab"].startswith("**")) else old.get(x["lab"])
+        if o:
+            beside = "%.0f ms | %.0f ms | %.2fx" % (o["render_ms"], o["grade_ms"], ratio_of(o))
+        else:
+            beside = " | ".join([NOT_MEASURED if not base else "-"] * 3)
+        flag = "" if x["passed"] else " (reference failed its goldens)"
+        L.append("| %s | %d | %.0f ms | %.0f ms | %.2fx%s | %s | %s |" %
+                 (x["lab"], x["scenes"], x["render_ms"], x["grade_ms"], ratio_of(x), flag,
+                  "yes" if ratio_of(x) <= RATIO_TARGET else "no", beside))
+    L.append("")
+
+    # Check latency
+    alt = c.get("alternative")
+    runs = max([x["runs"] for x in new["check"]] or [0])
+    L.append("### `check`: from a save to the verdict\n")
+    L.append("`shaderlab check LAB --submission SUB`, the whole process, %d runs after one untimed run; median and "
+             "95th percentile (interpolated between the nearest runs). SUB is a copy of reference_solutions, so "
+             "every image passes; before each run a comment in the lab's first student file is changed, as a save "
+             "changes it, so the file is a student's and not the reference's. *Warm*: `--cache DIR`, the default "
+             "behaviour (the first run filled DIR); *cold*: `--no-cache`, the reference rendered and every shader "
+             "compiled each time. The reference's images are identical to its own, which is the cheap case "
+             "(bit-identical images skip the metrics' filters), so one row grades %s. Target: median at most "
+             "%.1f s, warm, on 01-phong and 02-toon.\n" %
+             (runs, ("a correct alternative from the corpus, `tests/corpus/%s/%s` laid over the reference, whose "
+                     "images differ from the reference's in %d scenes" % (alt["lab"], alt["case"], alt["differing"]))
+              if alt else "no alternative: no corpus alternative of 02-toon or 01-phong gave differing images",
+              CHECK_TARGET_MS / 1000.0))
+    L.append("| lab | submission | condition | median | p95 | %s: median | p95 |" % bname)
+    L.append("|---|---|---|---|---|---|---|")
+    old = {(x["lab"], x["case"]): x for x in base["check"]} if base else {}
+    for x in new["check"]:
+        o = old.get((x["lab"], x["case"]))
+        beside = ("%.2f s | %.2f s" % (o["median_ms"] / 1000.0, o["p95_ms"] / 1000.0) if o else
+                  ("- | -" if base else NOT_MEASURED + " | " + NOT_MEASURED))
+        verdict = "" if x["passed"] else " (did not pass)"
+        L.append("| %s | %s%s | %s | %.2f s | %.2f s | %s |" % (x["lab"], x["case"], verdict, x["condition"],
+                                                              x["median_ms"] / 1000.0, x["p95_ms"] / 1000.0, beside))
+    L.append("")
+
+    # Batch
+    b = new["batch"]
+    L.append("### `batch` throughput\n")
+    L.append("`shaderlab batch SUBS --out NEW --cache DIR`, jobs at their default (the number of cores: %d), once "
+             "each, the reference renders already in DIR: one batch of a single other submission into DIR first. "
+             "*Distinct*: %d copies of reference_solutions, each with a comment of its own appended to every "
+             "student file, so no two lab folders are alike and every lab of every submission is graded. *Mixed*: "
+             "`scripts/make-batch-corpus.sh OUT %d` (half exact copies, which are graded once and reused; wrong, "
+             "hostile and unique work). Lab gradings are counted as summary.json reports them (the labs of a "
+             "submission refused whole, such as a broken zip, are not); *worker runs* are the labs actually "
+             "graded. Target: at least %.0f distinct lab gradings per minute.\n" %
+             (c.get("cores", 0), b["count"], b.get("mixed_count", b["count"]), BATCH_TARGET))
+    L.append("| corpus | lab gradings | passed | worker runs | wall | per minute | %s: lab gradings | wall | per minute |"
+             % bname)
+    L.append("|---|---|---|---|---|---|---|---|---|")
+    for key, label in (("distinct", "%d distinct correct" % b["count"]), ("mixed", "%d mixed" % b.get("mixed_count", b["count"]))):
+        x = b[key]
+        o = base["batch"][key] if base else None
+        beside = ("%d | %.1f s | %.0f" % (o["gradings"], o["wall_s"], o["per_minute"]) if o else
+                  " | ".join([NOT_MEASURED] * 3))
+        L.append("| %s | %d | %d | %s | %.1f s | **%.0f** | %s |" %
+                 (label, x["gradings"], x["passed"], x["worker_runs"] if x["worker_runs"] is not None else "?",
+                  x["wall_s"], x["per_minute"], beside))
+    L.append("")
+    return L
+
+
+def cached_skipped_row(res):
+    """The Work skipped table's row for the caches, from the check figures."""
+    c, new, base = cached_parts(res)
+    if not new:
+        return []
+    rows = {(x["lab"], x["condition"]): x for x in new["check"] if x["case"].startswith("reference")}
+    if ("01-phong", "warm") not in rows or ("01-phong", "cold") not in rows:
+        return []
+    return ["| the reference's renders and llvmpipe's compiled shaders, between runs of `grade` and `check` | made "
+            "anew every run: `check 01-phong` %.2f s (`--no-cache`) | kept in `--cache DIR` (default "
+            "`out/.shaderlab`): %.2f s | `useCaches` in `framework/cli/command_grade.cpp`; `useShaderCache` in "
+            "`framework/gl/src/gl_context.cpp` |" %
+            (rows[("01-phong", "cold")]["median_ms"] / 1000.0, rows[("01-phong", "warm")]["median_ms"] / 1000.0)]
+
+
 def write_page(res, figs, elapsed_s, command):
     m = res["machine"]
     L = []
@@ -478,8 +919,10 @@ def write_page(res, figs, elapsed_s, command):
     L.append("| grading every lab of reference_solutions: at most 1 s per lab on average | %.0f ms against "
              "the goldens, %.0f ms rendering the reference too | %s |" %
              (mean_lab, mean_lab_ref, "yes" if mean_lab <= 1000 else "no"))
-    L.append("| `shaderlab compare` of two 8x8 images, whole process: under 10 ms | %.1f ms | %s |\n" %
+    L.append("| `shaderlab compare` of two 8x8 images, whole process: under 10 ms | %.1f ms | %s |" %
              (c8, "yes" if c8 < 10 else "no"))
+    L.extend(cached_targets(res))
+    L.append("")
 
     # Start-up
     s = res["startup"]
@@ -504,14 +947,17 @@ def write_page(res, figs, elapsed_s, command):
 
     # Grade breakdown
     L.append("## Where grading time goes\n")
-    L.append("`shaderlab grade reference_solutions --no-reference --lab <lab>`, one process per lab, "
+    L.append("`shaderlab grade reference_solutions --no-reference --no-cache --lab <lab>`, one process per lab, "
              "phases recorded through `SHADERLAB_TIMINGS=<file>` (see `framework/base/include/shaderlab/base/timings.h`). "
              "*Drawing* is each scene's render time less its scene loading and read-back; it includes "
              "llvmpipe's JIT compilation of shader variants at their first draw, which Mesa does lazily, "
              "so *shader compilation* is only the GLSL front end and linking. *Render child* is the isolated "
              "render's cost beyond the work inside it (fork, waiting, handing images back). *Report files, "
              "exit* is the rest of the process (report.json, report.html, exit). The last column grades "
-             "against the reference rendered anew, as `shaderlab grade` does by default.\n")
+             "against the reference rendered anew (`--no-cache`, as `shaderlab grade` did before it kept the "
+             "reference's renders). `--no-cache` in both: every shader is compiled and nothing is kept between "
+             "runs or written to the repository's out/; what the caches save is in *With the caches kept "
+             "between runs* below.\n")
     header = "| lab | scenes | " + " | ".join(label for _, label in PHASES) + " | total | with reference |"
     L.append(header)
     L.append("|" + "---|" * (len(PHASES) + 4))
@@ -528,6 +974,8 @@ def write_page(res, figs, elapsed_s, command):
     failed = [x["lab"] for x in g if not x["passed"]]
     if failed:
         L.append("**The reference did not pass its own goldens in: %s** (see the reports).\n" % ", ".join(failed))
+
+    L.extend(cached_sections(res))
 
     # Skip work
     L.append("## Work skipped\n")
@@ -552,6 +1000,7 @@ def write_page(res, figs, elapsed_s, command):
     L.append("| reference images | %.0f ms per lab (rendering the reference) | %.0f ms per lab (`--no-reference`: stored goldens) | the goldens are the reference images kept; `shaderlab goldens` refreshes them |" %
              (mean_lab_ref, mean_lab))
     L.append("| depth buffers of targets no pass tests, writes or grades depth in | allocated and cleared every scene | not allocated | `LabRunner::createTargets` in `framework/render/src/lab_targets.cpp`. No bundled lab has such a target (their full-screen targets say `\"depth\": \"none\"`); with those lines deleted from 05 and 06, rendering both took 1.8 MB less peak memory and drew identical images (measured by hand on 2026-11-25, not by this script) |")
+    L.extend(cached_skipped_row(res))
     L.append("| vertex attributes a program does not read | - | TANGENT, COLOR_0 and TEXCOORD_1 uploaded on the first draw by a program that declares them | `bindOptionalAttributes` in `framework/render/src/scene_upload.cpp`; positions, normals and TEXCOORD_0 are always uploaded |\n")
 
     # Metrics
@@ -779,13 +1228,20 @@ def main():
     ap.add_argument("--command", default="bash scripts/bench.sh")
     ap.add_argument("--replot", action="store_true",
                     help="no measuring: rewrite the page and plots from the last run's results.json")
+    ap.add_argument("--baseline", help="an older shaderlab binary to measure beside this one (grade against "
+                    "render, check, batch); built in a tree of its own commit, it grades that tree's course")
+    ap.add_argument("--baseline-name", help="what the page calls it (default: its tree's commit)")
     args = ap.parse_args()
+    # The caches are chosen per command below; a cache variable or a course inherited from the
+    # caller's shell would change what is measured.
+    for k in [k for k in os.environ if k.startswith("MESA_SHADER_CACHE") or k == "SHADERLAB_LABS"]:
+        del os.environ[k]
     t0 = time.perf_counter()
     build = Path(args.build).resolve()
     work = Path(args.out).resolve()
     if args.replot:
         res = json.loads((work / "results.json").read_text())
-        write_page(res, plots(res), res.get("elapsed_s", 0.0), args.command)
+        write_page(res, plots(res), res.get("elapsed_s", 0.0), res.get("command", args.command))
         log("rewrote %s from %s" % (DOC, work / "results.json"))
         return
     if work.exists():
@@ -799,6 +1255,17 @@ def main():
     labs = lab_ids()
     res["grade"] = grade_breakdown(shaderlab, work, res["startup"]["help_ms"], labs)
     res["hints_load"] = starter_hints(shaderlab, work)
+    baseline = None
+    if args.baseline:
+        path = Path(args.baseline).resolve()
+        if not path.is_file():
+            sys.exit("bench: --baseline %s: no such binary" % args.baseline)
+        name = args.baseline_name or binary_info(path, "")["course_commit"]
+        baseline = {"path": str(path), "name": name}
+    t1 = time.perf_counter()
+    res["cached"] = cached_runs(shaderlab, baseline, work, args.quick)
+    res["cached"]["elapsed_s"] = time.perf_counter() - t1
+    log("caches, against %s: %.0f s" % (baseline["name"] if baseline else "no baseline", res["cached"]["elapsed_s"]))
     res["metrics"] = run_metrics(build, work, args.quick)
     log("metrics: %.2f ms for all three at 512x512" % res["metrics"]["ms"].get("BM_AllThree", -1))
     res["tessellation"] = run_tessellation(build, work, args.quick)
@@ -810,6 +1277,7 @@ def main():
     res["resolution"] = run_resolution(shaderlab, work, ["01-phong", "08-gooch"], sizes)
     res["unneeded"] = unneeded_passes()
     res["elapsed_s"] = time.perf_counter() - t0
+    res["command"] = args.command
     (work / "results.json").write_text(json.dumps(res, indent=1))
     figs = plots(res)
     write_page(res, figs, time.perf_counter() - t0, args.command)
