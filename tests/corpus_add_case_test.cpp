@@ -123,6 +123,22 @@ TEST_F(CorpusAddCase, StoresOnlyTheFilesThatDifferAndAppendsOneCaseLine) {
     EXPECT_NE(r.output.find("shaderlab corpus --lab 08-gooch"), std::string::npos) << r.output;
 }
 
+TEST_F(CorpusAddCase, CorpusSaysTheNewCaseHasNoHintsYetAndKeepsTheLabsPoints) {
+    changeLine("gooch.frag", "u_beta * k_d", "0.5 * k_d");
+    ASSERT_EQ(
+        addCase("beta-halved", "--kind mistake --fails tone --about \"beta replaced by 0.5\"").exit_code, 0);
+    // Its pictures are not among the lab's hints until `goldens` runs: the hints are stale, and
+    // the summary still counts the lab's points (it once printed "10.00 / 0.00").
+    const CliRun r =
+        run(std::string(SHADERLAB_CLI) + " corpus --lab " + kLab + " --labs " + (tmp_ / "labs").string() +
+            " --corpus " + (tmp_ / "tests" / "corpus").string() + " --reference " +
+            (tmp_ / "reference_solutions").string() + " --out " + (tmp_ / "out").string());
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("FAIL known-mistake hints"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("worst correct solution 10.00 / 10.00"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("beta-halved"), std::string::npos) << r.output;
+}
+
 TEST_F(CorpusAddCase, ABrokenCaseDeletesTheFilesItLacks) {
     fs::remove(from() / "lines.frag");
     const CliRun r = addCase("no-lines", "--kind broken --status missing --about \"no lines.frag\"");

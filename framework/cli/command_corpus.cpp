@@ -303,7 +303,9 @@ void printSeparation(const std::string& id, const std::vector<Outcome>& outcomes
     double worst_alternative = -1.0, best_mistake = -1.0, max_score = 0.0;
     for (const Outcome& o : outcomes) {
         if (o.lab != id) continue;
-        max_score = o.max_score;
+        // A stale-hints outcome carries no score: the lab's points come from the graded ones.
+        if (o.kind == "hints") continue;
+        max_score = std::max(max_score, o.max_score);
         if (o.kind == "alternative" || o.kind == "reference")
             worst_alternative = worst_alternative < 0 ? o.score : std::min(worst_alternative, o.score);
         if (o.kind == "mistake") best_mistake = std::max(best_mistake, o.score);
