@@ -22,6 +22,7 @@
 #include "grader/metrics/scoring.h"
 #include "grader/reports/report.h"
 #include "shaderlab/base/paths.h"
+#include "shaderlab/base/timings.h"
 #include "shaderlab/batch/reference_cache.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/lab/lab_catalog.h"
@@ -58,6 +59,9 @@ void useCaches(GradeOptions* options, const std::string& cache_dir, bool no_cach
     options->reference_cache = [cache](const LabSpec& spec, const std::string& renderer) {
         std::string error;  // no entry: the grade renders the reference as it always could
         return batch::cachedReference(cache, spec.id, renderer, &error);
+    };
+    options->reference_cache_guess = [cache](const LabSpec& spec) {
+        return batch::guessCachedReference(cache, spec.id);
     };
 }
 
@@ -215,16 +219,20 @@ bool selectLabs(const CommonOptions& common, const std::vector<std::string>& wan
     return ok;
 }
 
+// `final`: the run is over. report.html then embeds its pictures (up to 20 MB) so that it opens
+// anywhere on its own, and results.json carries the failing ones (up to 2 MB) in its html output;
+// the pages written after each lab before that link the pictures beside them instead, since
+// embedding every picture again after every lab made a course's run quadratic in its pictures.
 bool writeReports(const grader::Report& report, const fs::path& out, const std::vector<std::string>& formats,
-                  std::string* error) {
+                  bool final, std::string* error) {
+    ScopedTiming timing("report_files", "", out.string());
+    const std::string embed_root = final ? out.string() : std::string();
     bool ok = writeText(out / "report.json", grader::reportToJson(report), error);
-    // report.html embeds its pictures (up to 20 MB) so that it opens anywhere on its own;
-    // results.json carries the failing ones (up to 2 MB) in its html output.
-    ok = ok && writeText(out / "report.html", grader::reportToHtml(report, {out.string(), 20u << 20}), error);
+    ok = ok && writeText(out / "report.html", grader::reportToHtml(report, {embed_root, 20u << 20}), error);
     for (const std::string& f : formats) {
         if (f == "gradescope")
             ok = ok && writeText(out / "results.json",
-                                 grader::reportToGradescope(report, {out.string(), 2u << 20}), error);
+                                 grader::reportToGradescope(report, {embed_root, 2u << 20}), error);
         if (f == "junit")
             ok = ok && writeText(out / "report.junit.xml", grader::reportToJunit(report), error);
     }
@@ -272,10 +280,10 @@ int runGrade(const GradeArgs& args) {
         printLab(so_far.labs.back(), false);
         grader::Report r = so_far;
         r.tool_version = SHADERLAB_VERSION;
-        written = written && writeReports(r, out, args.formats, &error);
+        written = written && writeReports(r, out, args.formats, false, &error);
     });
     report.tool_version = SHADERLAB_VERSION;
-    if (!written || !writeReports(report, out, args.formats, &error)) {
+    if (!written || !writeReports(report, out, args.formats, true, &error)) {
         std::cerr << "shaderlab: cannot write the reports into " << out.string() << ": " << error << "\n";
         return 2;
     }
@@ -330,7 +338,7 @@ int runCheck(const CheckArgs& args) {
     report.tool_version = SHADERLAB_VERSION;
     for (const grader::ReportLab& lab : report.labs) printLab(lab, true);
     std::string error;
-    if (!writeReports(report, options.out_dir, {}, &error)) {
+    if (!writeReports(report, options.out_dir, {}, true, &error)) {
         std::cerr << "shaderlab: cannot write the report into " << options.out_dir << ": " << error << "\n";
         return 2;
     }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "batch_detail.h"
 #include "shaderlab/base/timings.h"
 #include "shaderlab/batch/reference_cache.h"
 #include "shaderlab/batch/workers.h"
@@ -73,6 +74,40 @@ void prune(const fs::path& dir, const std::string& lab_id, int keep) {
 
 }  // namespace
 
+namespace {
+
+fs::path entryFor(const ReferenceCacheSettings& settings, const std::string& lab_id,
+                  const std::string& renderer) {
+    Hasher key;
+    addReferenceInputs(&key, settings.tool_version, selfExe(), backendName(settings.backend), renderer,
+                       settings.labs_root, lab_id, settings.reference_root);
+    return fs::path(settings.dir) / (lab_id + "-" + key.hex());
+}
+
+// The renderer the cache was last asked for with this backend, one file per backend.
+fs::path lastRendererFile(const ReferenceCacheSettings& settings) {
+    return fs::path(settings.dir) / (std::string("last-renderer-") + backendName(settings.backend) + ".txt");
+}
+
+void rememberRenderer(const ReferenceCacheSettings& settings, const std::string& renderer) {
+    const fs::path file = lastRendererFile(settings);
+    if (batch_detail::readText(file.string(), 4096) == renderer) return;
+    std::string ignored;  // only a guess is lost
+    writeFileAtomically(file.string(), renderer, &ignored);
+}
+
+}  // namespace
+
+std::string guessCachedReference(const ReferenceCacheSettings& settings, const std::string& lab_id) {
+    std::error_code ec;
+    if (settings.reference_root.empty() || !fs::is_directory(fs::path(settings.reference_root) / lab_id, ec))
+        return {};
+    const std::string renderer = batch_detail::readText(lastRendererFile(settings).string(), 4096);
+    if (renderer.empty()) return {};
+    const fs::path entry = entryFor(settings, lab_id, renderer);
+    return fs::is_directory(entry / lab_id / "golden", ec) ? entry.string() : std::string();
+}
+
 std::string cachedReference(const ReferenceCacheSettings& settings, const std::string& lab_id,
                             const std::string& renderer, std::string* error) {
     std::error_code ec;
@@ -81,12 +116,12 @@ std::string cachedReference(const ReferenceCacheSettings& settings, const std::s
         *error = "no reference solution for " + lab_id;
         return {};
     }
-    Hasher key;
-    addReferenceInputs(&key, settings.tool_version, selfExe(), backendName(settings.backend), renderer,
-                       settings.labs_root, lab_id, settings.reference_root);
     const fs::path dir = settings.dir;
-    const fs::path entry = dir / (lab_id + "-" + key.hex());
-    if (fs::is_directory(entry / lab_id / "golden", ec)) return entry.string();
+    const fs::path entry = entryFor(settings, lab_id, renderer);
+    if (fs::is_directory(entry / lab_id / "golden", ec)) {
+        rememberRenderer(settings, renderer);
+        return entry.string();
+    }
 
     fs::create_directories(dir, ec);
     if (ec) {
@@ -115,6 +150,7 @@ std::string cachedReference(const ReferenceCacheSettings& settings, const std::s
         return {};
     }
     prune(dir, lab_id, settings.keep_per_lab);
+    rememberRenderer(settings, renderer);
     return entry.string();
 }
 

@@ -4,11 +4,17 @@
 #include "shaderlab/grading/grading.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <exception>
 #include <filesystem>
+#include <future>
 #include <map>
+#include <mutex>
 #include <set>
+#include <thread>
 
+#include "grader/base/atomic_file.h"
 #include "grader/metrics/scoring.h"
 #include "grading_detail.h"
 #include "shaderlab/base/timings.h"
@@ -24,11 +30,13 @@ namespace grading_detail {
 
 IsolatedRender renderFrom(const LabSpec& spec, const std::string& root, Backend backend,
                           const IsolationLimits& limits,
-                          const std::function<void(const std::string&)>& progress) {
+                          const std::function<void(const std::string&)>& progress,
+                          const std::function<void()>& while_rendering) {
     RenderOptions options;
     options.containment_root = root;
     options.progress = progress;
-    return renderLabIsolated(spec, (fs::path(root) / spec.id).string(), backend, limits, options);
+    return renderLabIsolated(spec, (fs::path(root) / spec.id).string(), backend, limits, options,
+                             while_rendering);
 }
 
 std::vector<GradedImage> gradedImages(const LabSpec& spec) {
@@ -159,7 +167,8 @@ struct LabGrading {
 
 // The student first: a submission that does not build needs no reference at all.
 IsolatedRender renderStudent(const LabSpec& spec, const std::string& submission_dir, const std::string& id,
-                             const GradeOptions& options, std::string* renderer, grader::ReportLab* lab) {
+                             const GradeOptions& options, std::string* renderer, grader::ReportLab* lab,
+                             const std::function<void()>& while_rendering) {
     // What was graded, named in the report: the student files of this lab in this folder.
     lab->folder = fs::absolute(fs::path(submission_dir) / id).lexically_normal().string();
     lab->files = spec.student_files;
@@ -168,7 +177,8 @@ IsolatedRender renderStudent(const LabSpec& spec, const std::string& submission_
         spec, submission_dir, options.backend, options.limits,
         options.progress ? std::function<void(const std::string&)>(
                                [&](const std::string& event) { options.progress(id, event); })
-                         : std::function<void(const std::string&)>());
+                         : std::function<void(const std::string&)>(),
+        while_rendering);
     student_timing.stop();
     if (!student.renderer.empty()) *renderer = student.renderer;
     for (const Diagnostic& d : student.render.diagnostics) lab->diagnostics.push_back(toReportDiagnostic(d));
@@ -246,40 +256,60 @@ struct SceneFailures {
     std::vector<FailingPicture> pictures;
 };
 
-// Judges graded image `i` of `scene` against `theirs`, writes its pictures and adds it to the
-// scene's report (the scene's own figures and pictures are its final image's).
-void gradeImage(LabGrading& lab, const SceneRender& scene, std::size_t i, const PassImage& theirs,
-                const std::string& reference_source, grader::ReportScene* rs, SceneFailures* failures) {
+// One graded image judged and its pictures written: what the scene's verdict takes from it.
+struct JudgedImage {
+    grader::ImageVerdict verdict;  // its FLIP map and mismatch mask dropped once drawn
+    grader::ReportPass pass;
+    grading_detail::ShownPictures shown;
+    std::vector<std::string> write_errors;
+};
+
+// Judges graded image `i` of `scene` against `theirs` and writes its pictures. Reads `lab` and
+// writes only the scene's own pictures, so that scenes can be judged on threads of their own.
+JudgedImage judgeGradedImage(const LabGrading& lab, const SceneRender& scene, std::size_t i,
+                             const PassImage& theirs, const std::string& reference_source) {
     const PassImage& mine = scene.passes[i];
     const GradedImage& g = lab.graded[i];
-    const bool final_image = i + 1 == scene.passes.size();
     const grader::Thresholds thresholds = imageThresholds(lab.spec, scene.scene, *g.pass);
+    JudgedImage j;
     ScopedTiming metrics_timing("metrics", lab.id, scene.scene);
-    const grader::ImageVerdict v =
-        grader::judgeImage(theirs.color, theirs.coverage, mine.color, mine.coverage, thresholds,
-                           g.hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
+    j.verdict = grader::judgeImage(theirs.color, theirs.coverage, mine.color, mine.coverage, thresholds,
+                                   g.hdr ? grader::ImageRange::Hdr : grader::ImageRange::Display);
     metrics_timing.stop();
     ScopedTiming images_timing("images", lab.id, scene.scene);
-    grader::ReportPass rp = reportPass(g, v, thresholds, mine.color);
+    j.pass = reportPass(g, j.verdict, thresholds, mine.color);
     grading_detail::PicturePlace place;
     place.out_dir = lab.options.out_dir;
     place.lab = lab.id;
     place.scene = scene.scene;
-    place.final_image = final_image;
+    place.final_image = i + 1 == scene.passes.size();
     place.reference_source = reference_source;
     place.stored_dir = lab.stored_dir;
-    const grading_detail::ShownPictures shown =
-        grading_detail::writeReportPictures(place, g, v, mine.color, theirs.color, &rp, &lab.write_errors);
-    images_timing.stop();
+    j.shown = grading_detail::writeReportPictures(place, g, j.verdict, mine.color, theirs.color, &j.pass,
+                                                  &j.write_errors);
+    j.verdict.flip_map = {};
+    j.verdict.mismatches = {};
+    return j;
+}
+
+// Adds judged image `i` of `scene` to the scene's report and to what the lab keeps of it (the
+// scene's own figures and pictures are its final image's). In the scenes' order, one at a time.
+void recordImage(LabGrading& lab, const SceneRender& scene, std::size_t i, JudgedImage&& j,
+                 grader::ReportScene* rs, SceneFailures* failures) {
+    const GradedImage& g = lab.graded[i];
+    const grader::ImageVerdict& v = j.verdict;
+    lab.write_errors.insert(lab.write_errors.end(), j.write_errors.begin(), j.write_errors.end());
     // Only a failing image can be the one a known mistake explains.
     if (!v.passed) lab.readHints();
-    failures->pictures.push_back(!v.passed && !lab.hints.hints.empty()
-                                     ? FailingPicture{g.id, shown.student, shown.reference, v.graded}
-                                     : FailingPicture{});
+    failures->pictures.push_back(
+        !v.passed && !lab.hints.hints.empty()
+            ? FailingPicture{g.id, std::move(j.shown.student), std::move(j.shown.reference), v.graded}
+            : FailingPicture{});
     auto& check = lab.checks.emplace(std::make_pair(scene.scene, g.pass->name), true).first->second;
     check = check && v.passed;
     if (!v.passed) failures->failing.push_back({i, v.reasons});
-    if (final_image) {
+    grader::ReportPass& rp = j.pass;
+    if (i + 1 == scene.passes.size()) {
         rs->metrics = rp.metrics;
         rs->frame_metrics = reportMetrics(v.frame, v);
         rs->worst_region = v.worst.tile;
@@ -291,6 +321,46 @@ void gradeImage(LabGrading& lab, const SceneRender& scene, std::size_t i, const 
         rs->zoom_image = rp.zoom_image;
     }
     rs->passes.push_back(std::move(rp));
+}
+
+// Every graded image of every scene judged (judgeGradedImage), the scenes shared among up to as many
+// threads as the machine has cores: the metrics and the pictures of one scene need nothing of
+// another's. Unloadable scenes get no images. An exception on a thread is thrown again here.
+std::vector<std::vector<JudgedImage>> judgeScenes(const LabGrading& lab,
+                                                  const std::vector<SceneRender>& scenes,
+                                                  const ReferenceImages& ref,
+                                                  const std::set<std::string>& unloadable) {
+    std::vector<std::vector<JudgedImage>> judged(scenes.size());
+    // The lab's picture folder first, so that threads never race to make the same folder.
+    if (!lab.options.out_dir.empty()) {
+        std::string ignored;  // a failure shows again, with its reason, at the first picture
+        grader::createFoldersInside(lab.options.out_dir, lab.id, &ignored);
+    }
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_lock;
+    auto work = [&]() {
+        for (std::size_t s = next++; s < scenes.size(); s = next++) {
+            const SceneRender& scene = scenes[s];
+            if (unloadable.count(scene.scene)) continue;
+            try {
+                const std::vector<PassImage>& theirs = ref.scenes.at(scene.scene);
+                for (std::size_t i = 0; i < scene.passes.size(); ++i)
+                    judged[s].push_back(judgeGradedImage(lab, scene, i, theirs[i], ref.source));
+            } catch (...) {
+                const std::lock_guard<std::mutex> hold(failure_lock);
+                if (!failure) failure = std::current_exception();
+            }
+        }
+    };
+    const std::size_t threads =
+        std::min<std::size_t>(scenes.size(), std::max(1u, std::min(4u, std::thread::hardware_concurrency())));
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+    return judged;
 }
 
 // Where to look first: the failing images no other failing image feeds (through the
@@ -341,7 +411,7 @@ std::vector<const FailingImage*> describeScene(const LabGrading& lab,
 }
 
 // One scene's verdict: every graded image judged, and the scene's message naming where to look.
-grader::ReportScene gradeScene(LabGrading& lab, const SceneRender& scene, const ReferenceImages& ref,
+grader::ReportScene gradeScene(LabGrading& lab, const SceneRender& scene, std::vector<JudgedImage>&& judged,
                                bool unloadable) {
     grader::ReportScene rs;
     rs.name = scene.scene;
@@ -355,10 +425,9 @@ grader::ReportScene gradeScene(LabGrading& lab, const SceneRender& scene, const 
             scene.error;
         return rs;
     }
-    const auto ref_it = ref.scenes.find(scene.scene);
     SceneFailures failures;
-    for (std::size_t i = 0; i < scene.passes.size(); ++i)
-        gradeImage(lab, scene, i, ref_it->second[i], ref.source, &rs, &failures);
+    for (std::size_t i = 0; i < judged.size(); ++i)
+        recordImage(lab, scene, i, std::move(judged[i]), &rs, &failures);
     const std::vector<FailingImage>& failing = failures.failing;
     rs.status = failing.empty() ? "passed" : "failed";
     const std::vector<const FailingImage*> roots = describeScene(lab, failing, scene.passes.size(), 0, &rs);
@@ -550,7 +619,28 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         return finish();
     }
 
-    const IsolatedRender student = renderStudent(spec, submission_dir, id, options, renderer, &lab);
+    // Stored goldens (no reference solution to render), or the reference's images kept in the
+    // cache for the renderer it saw last, are read while the student's render runs: on a thread
+    // started once the render child exists (so that no thread runs at its fork) and joined here,
+    // before anything else forks. Read without knowing which scenes the render could not load: a
+    // missing golden of such a scene reads again below, skipping it.
+    std::string stored_dir =
+        options.goldens_root.empty() ? spec.lab_dir : (fs::path(options.goldens_root) / id).string();
+    const bool stored_goldens = !grading_detail::hasReference(options.reference_root, id);
+    std::string guessed_cache;
+    std::future<ReferenceImages> early_goldens;
+    const IsolatedRender student = renderStudent(spec, submission_dir, id, options, renderer, &lab, [&]() {
+        if (!stored_goldens && options.reference_cache_guess)
+            guessed_cache = options.reference_cache_guess(spec);
+        const std::string early_dir = stored_goldens          ? stored_dir
+                                      : guessed_cache.empty() ? std::string()
+                                                              : (fs::path(guessed_cache) / id).string();
+        if (!early_dir.empty())
+            early_goldens = std::async(std::launch::async, [&spec, early_dir]() {
+                return grading_detail::loadGoldens(spec, early_dir, {});
+            });
+    });
+    ReferenceImages early = early_goldens.valid() ? early_goldens.get() : ReferenceImages{};
     if (student.status != IsolatedStatus::Ok) {
         lab.status = labStatusOf(student.status);
         lab.message = student.message;
@@ -560,20 +650,26 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
 
     // Goldens and hints live in the lab's folder, or under goldens_root when it is given; a
     // reference render kept from an earlier run lives in the cache, hints beside it.
-    std::string stored_dir =
-        options.goldens_root.empty() ? spec.lab_dir : (fs::path(options.goldens_root) / id).string();
     const UnloadableScenes unloadable = unloadableScenes(student.render.scenes);
     ReferenceImages ref;
-    if (grading_detail::hasReference(options.reference_root, id)) {
+    if (!stored_goldens) {
         const std::string cached =
             options.reference_cache ? options.reference_cache(spec, student.renderer) : std::string();
         if (!cached.empty()) {
-            ref = grading_detail::loadGoldens(spec, (fs::path(cached) / id).string(), unloadable.names);
+            if (cached == guessed_cache && early.ok) {
+                ref = std::move(early);
+                for (const std::string& name : unloadable.names) ref.scenes.erase(name);
+            } else {
+                ref = grading_detail::loadGoldens(spec, (fs::path(cached) / id).string(), unloadable.names);
+            }
             ref.source = "reference_cache";
             if (ref.ok) stored_dir = (fs::path(cached) / id).string();
         }
         // No cache, or an entry that cannot be read (removed under us): render it now.
         if (!ref.ok) ref = grading_detail::renderReference(spec, options.reference_root, options);
+    } else if (early.ok) {
+        ref = std::move(early);
+        for (const std::string& name : unloadable.names) ref.scenes.erase(name);
     } else {
         ref = grading_detail::loadGoldens(spec, stored_dir, unloadable.names);
     }
@@ -595,9 +691,13 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     }
 
     grading.ancestors = passAncestors(spec);
+    std::vector<std::vector<JudgedImage>> judged =
+        judgeScenes(grading, student.render.scenes, ref, unloadable.names);
     bool all_passed = true;
-    for (const SceneRender& scene : student.render.scenes) {
-        grader::ReportScene rs = gradeScene(grading, scene, ref, unloadable.names.count(scene.scene) > 0);
+    for (std::size_t s = 0; s < student.render.scenes.size(); ++s) {
+        const SceneRender& scene = student.render.scenes[s];
+        grader::ReportScene rs =
+            gradeScene(grading, scene, std::move(judged[s]), unloadable.names.count(scene.scene) > 0);
         all_passed = all_passed && rs.status == "passed";
         lab.scenes.push_back(std::move(rs));
     }

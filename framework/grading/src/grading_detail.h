@@ -31,7 +31,8 @@ std::vector<GradedImage> gradedImages(const LabSpec& spec);
 // Renders the lab folder `id` of the submission `root` (student files must stay inside root).
 IsolatedRender renderFrom(const LabSpec& spec, const std::string& root, Backend backend,
                           const IsolationLimits& limits,
-                          const std::function<void(const std::string&)>& progress = {});
+                          const std::function<void(const std::string&)>& progress = {},
+                          const std::function<void()>& while_rendering = {});
 
 struct ReferenceImages {
     bool ok = false;

@@ -469,7 +469,8 @@ const char* isolatedStatusName(IsolatedStatus status) {
 }
 
 IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_dir, Backend backend,
-                                 const IsolationLimits& limits, const RenderOptions& options) {
+                                 const IsolationLimits& limits, const RenderOptions& options,
+                                 const std::function<void()>& while_rendering) {
     IsolatedRender out;
     // An anonymous file: the parent keeps it open, the child writes into it, and it is gone
     // with the last descriptor however either process ends.
@@ -510,6 +511,7 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
     g_render_child = pid;
     if (progress_pipe[1] >= 0) close(progress_pipe[1]);
     if (progress_pipe[0] >= 0) fcntl(progress_pipe[0], F_SETFL, O_NONBLOCK);
+    if (while_rendering) while_rendering();
     ChildProgress progress(progress_pipe[0], options, &out, t0);
     ChildEnd end = watchChild(pid, limits, progress);
     progress.drain();

@@ -60,12 +60,8 @@ inline std::string checkPair(const Image& reference, const Image& test, const Ma
 // True when both images hold the same values, channel for channel (float ==, so a NaN is never
 // identical and such images take the full path). Metrics use it to skip their filters: equal
 // inputs have known results (PSNR infinite, SSIM 1, FLIP 0, no mismatch).
-inline bool identicalPixels(const Image& a, const Image& b) {
-    if (a.channels != b.channels || a.pixels.size() != b.pixels.size()) return false;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i)
-        if (!(a.pixels[i] == b.pixels[i])) return false;
-    return true;
-}
+// Defined in non_finite.cpp, which is built to vectorise its scans.
+bool identicalPixels(const Image& a, const Image& b);
 
 inline bool counts(const Mask* mask, std::size_t pixel) {
     return mask == nullptr || mask->values[pixel] != 0;

@@ -250,5 +250,27 @@ TEST(MetricStress, IdenticalFastPathAgreesWithTheFullComputation) {
     EXPECT_FALSE(computeFlip(a, nearly, fc).ok);
 }
 
+// The identity test the metrics start with scans in blocks of 256 values: a difference, a NaN
+// or a negative zero anywhere (first block, a middle one, the tail after the last whole block)
+// is seen, and the image takes the full path; an equal one gets FLIP exactly 0.
+TEST(MetricStress, IdentityTestSeesEveryValue) {
+    const Image a = noiseImage(37, 29, 3, 5);  // 3219 values: 12 blocks and a tail of 147
+    ASSERT_EQ(computeFlip(a, a).mean, 0.0);
+    for (const std::size_t at : {std::size_t(0), std::size_t(255), std::size_t(1500), a.pixels.size() - 1}) {
+        Image b = a;
+        b.pixels[at] = b.pixels[at] > 0.5f ? 0.0f : 1.0f;
+        EXPECT_GT(computeFlip(a, b).mean, 0.0) << "one value changed at " << at;
+        EXPECT_LT(computeSsim(a, b).ssim, 1.0) << "one value changed at " << at;
+        Image n = a;
+        n.pixels[at] = std::numeric_limits<float>::quiet_NaN();
+        // A NaN is never identical to itself: the full path, whose result the NaN reaches.
+        EXPECT_FALSE(computeSsim(n, n).ssim == 1.0) << "NaN at " << at;
+    }
+    // -0 equals +0 under float ==: the fast path, and the same answer as the full one.
+    Image zero = greyImage(20, 20, 0.0f), negative = zero;
+    for (float& v : negative.pixels) v = -0.0f;
+    EXPECT_EQ(computeSsim(zero, negative).ssim, 1.0);
+}
+
 }  // namespace
 }  // namespace grader

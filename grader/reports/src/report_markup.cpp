@@ -62,7 +62,19 @@ std::string diagnosticLine(const ReportDiagnostic& d) { return formatDiagnostic(
 std::string escapeMarkup(const std::string& s) {
     std::string out;
     out.reserve(s.size());
+    // A byte that needs nothing (printable ASCII other than the five above) is copied in runs:
+    // the pictures' data URIs, megabytes of base64, are nothing else.
+    const auto plain = [](unsigned char b) {
+        return b >= 0x20 && b < 0x7F && b != '&' && b != '<' && b != '>' && b != '"' && b != '\'';
+    };
     for (std::size_t i = 0; i < s.size();) {
+        std::size_t run = i;
+        while (run < s.size() && plain(static_cast<unsigned char>(s[run]))) ++run;
+        if (run > i) {
+            out.append(s, i, run - i);
+            i = run;
+            continue;
+        }
         const char c = s[i];
         const std::size_t n = utf8Length(s, i);
         if (n == 0) {

@@ -333,3 +333,14 @@ TEST(ReportHtml, OlderReportsWithoutThresholdsStillRender) {
 }
 
 }  // namespace
+
+// Runs of plain ASCII are copied whole; every byte around them still gets its own treatment.
+TEST(ReportMarkup, EscapesEveryKindOfByteInsideAndBetweenPlainRuns) {
+    const std::string base64_run(5000, 'Q');
+    const std::string in = "ab&c<d>e\"f'g\x01h\ni\tj\r" + base64_run + "\xC3\xA9k\xFFl\x7Fm\xE2\x82";
+    const std::string expected =
+        "ab&amp;c&lt;d&gt;e&quot;f&#39;g?h\ni\tj\r" + base64_run + "\xC3\xA9k?l\x7Fm??";
+    EXPECT_EQ(grader::escapeMarkup(in), expected);
+    EXPECT_EQ(grader::escapeMarkup(""), "");
+    EXPECT_EQ(grader::escapeMarkup("plain"), "plain");
+}

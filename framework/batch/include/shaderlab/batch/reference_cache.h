@@ -42,4 +42,9 @@ struct ReferenceCacheSettings {
 std::string cachedReference(const ReferenceCacheSettings& settings, const std::string& lab_id,
                             const std::string& renderer, std::string* error);
 
+// The entry cachedReference would give for the renderer it was last asked for with this backend
+// (remembered in the cache folder), when that entry exists; else empty. It renders nothing, so it
+// can run while a student's render does and say which images to read meanwhile.
+std::string guessCachedReference(const ReferenceCacheSettings& settings, const std::string& lab_id);
+
 }  // namespace shaderlab::batch

@@ -35,6 +35,11 @@ struct GradeOptions {
     // the root of <lab>/golden/ and <lab>/hints/ holding that reference's images, which are then
     // read instead of rendering the reference again; empty: render it. May be empty.
     std::function<std::string(const LabSpec& spec, const std::string& renderer)> reference_cache;
+    // The root reference_cache would give if the renderer is the one the cache saw last, when that
+    // entry is there; empty otherwise. It never renders, and is asked while the student's render
+    // runs, so that the reference's images are read meanwhile; they are used only when
+    // reference_cache then gives the same root. May be empty.
+    std::function<std::string(const LabSpec& spec)> reference_cache_guess;
 };
 
 // Called after each lab is graded with the report so far (its last lab is the new one), so the

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 
@@ -57,7 +58,12 @@ struct IsolatedRender {
 nlohmann::json diagnosticToJson(const Diagnostic& d);
 
 // `options.progress`, when set, is called in this process with each event the child reports.
+// `while_rendering`, when set, is called in this process once the child exists, before its end is
+// awaited: work that needs no render (reading the goldens) starts there, on a thread of its own
+// if it should overlap the render; no thread may be left running that could fork or that holds a
+// lock the next fork's child needs, so join it before the next render.
 IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_dir, Backend backend,
-                                 const IsolationLimits& limits, const RenderOptions& options = {});
+                                 const IsolationLimits& limits, const RenderOptions& options = {},
+                                 const std::function<void()>& while_rendering = {});
 
 }  // namespace shaderlab
