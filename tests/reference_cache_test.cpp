@@ -179,4 +179,42 @@ TEST_F(ReferenceCache, ShaderCacheFolderIsMadeEvenWithoutAReference) {
     EXPECT_GT(mesa_files, 0u) << "no shader cache under " << cache;
 }
 
+// The kept reference's images are read while the student's render runs, for the renderer the
+// cache saw last (last-renderer-<backend>.txt); a guess that names another renderer reads
+// nothing early, and the images are read once the render says which renderer drew it. Either
+// way the verdicts are those of the first grade.
+TEST_F(ReferenceCache, ImagesAreReadDuringTheRenderOnlyForTheRendererLastSeen) {
+    const std::string common = (kRoot / "reference_solutions").string() + " --lab 01-phong --cache " +
+                               (tmp_ / "cache").string() + " --out ";
+    ASSERT_EQ(run("first", "grade " + common + (tmp_ / "first").string()).exit_code, 0);
+    const fs::path last = tmp_ / "cache" / "references" / "last-renderer-osmesa.txt";
+    const std::string renderer = readFile(last);
+    ASSERT_NE(renderer.find("OpenGL"), std::string::npos) << "no renderer remembered in " << last;
+
+    // Where the timings put the goldens: before the student's render ends (read meanwhile) or after.
+    const auto goldens_during_render = [&](const std::string& name) {
+        const std::string t = readFile(tmp_ / (name + ".timings"));
+        const std::size_t goldens = t.find("\tgoldens\t"),
+                          student = t.find("\trender_child\t01-phong\tstudent");
+        EXPECT_NE(goldens, std::string::npos) << t;
+        EXPECT_NE(student, std::string::npos) << t;
+        return goldens < student;
+    };
+    ASSERT_EQ(run("second", "grade " + common + (tmp_ / "second").string()).exit_code, 0);
+    EXPECT_TRUE(goldens_during_render("second"));
+    std::ofstream(last) << "another renderer, OpenGL 9.9";
+    ASSERT_EQ(run("third", "grade " + common + (tmp_ / "third").string()).exit_code, 0);
+    EXPECT_FALSE(goldens_during_render("third"));
+    EXPECT_EQ(readFile(last), renderer) << "the renderer that drew is remembered again";
+    const json first = report("first");
+    for (const char* name : {"second", "third"}) {
+        const json r = report(name);
+        EXPECT_EQ(r["labs"][0]["reference_source"], "reference_cache") << name;
+        EXPECT_EQ(r["labs"][0]["goals"], first["labs"][0]["goals"]) << name;
+        ASSERT_EQ(r["labs"][0]["scenes"].size(), first["labs"][0]["scenes"].size()) << name;
+        for (std::size_t i = 0; i < first["labs"][0]["scenes"].size(); ++i)
+            EXPECT_EQ(r["labs"][0]["scenes"][i]["passes"], first["labs"][0]["scenes"][i]["passes"]) << name;
+    }
+}
+
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "grader/base/atomic_file.h"
 #include "grader/metrics/heatmap.h"
+#include "grader/metrics/scoring.h"
 #include "grader/reports/report_images.h"
 #include "grading_detail.h"
 
@@ -57,6 +58,13 @@ std::string copyOrWriteImage(const std::string& golden, const grader::Image& img
     return writeImage(img, out_dir, rel, errors);
 }
 
+// Whether two images make the same PNG: the same size and channels, and every value at the same
+// of the 256 levels writePng stores.
+bool samePicture(const grader::Image& a, const grader::Image& b) {
+    if (a.width != b.width || a.height != b.height || a.channels != b.channels) return false;
+    return grader::quantise8(a).pixels == grader::quantise8(b).pixels;
+}
+
 }  // namespace
 
 ShownPictures writeReportPictures(const PicturePlace& place, const GradedImage& g,
@@ -97,7 +105,12 @@ ShownPictures writeReportPictures(const PicturePlace& place, const GradedImage& 
     // A grade without pictures (the workbench's verdict) needs only what was shown, for the hints.
     if (out_dir.empty()) return {std::move(picture), std::move(shown_theirs)};
     rp->student_image = writeImage(picture, out_dir, student_rel, errors);
-    rp->reference_image = copyOrWriteImage(golden, shown_theirs, out_dir, reference_rel, errors);
+    // No stored PNG to copy (an HDR image, or a reference rendered now), but a passing picture
+    // that is the reference's, level for level: the student's file, copied, not encoded again.
+    const bool same_picture =
+        golden.empty() && v.passed && !rp->student_image.empty() && samePicture(picture, shown_theirs);
+    rp->reference_image = copyOrWriteImage(same_picture ? (out_dir / student_rel).string() : golden,
+                                           shown_theirs, out_dir, reference_rel, errors);
     if (v.passed) return {};
     grader::HeatmapConfig hc;
     hc.outline = v.mismatches.empty() ? nullptr : &v.mismatches;
