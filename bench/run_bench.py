@@ -757,6 +757,10 @@ def cached_targets(res):
     d = new["batch"]["distinct"]
     beside = ("; %s: %.0f" % (bname, base["batch"]["distinct"]["per_minute"]) if base
               else "; baseline " + NOT_MEASURED)
+    if base and bname == "604cdf7":
+        # Issue 23 set the target where 604cdf7 graded 225 per minute; the same ratio here.
+        beside += (" (the target was set on a machine where 604cdf7 did 225 per minute: in proportion, "
+                   "%.0f per minute here)" % (BATCH_TARGET * base["batch"]["distinct"]["per_minute"] / 225.0))
     out.append("| `batch` of distinct correct submissions, references cached, %d cores: at least %.0f lab "
                "gradings per minute | %.0f per minute%s | %s |" %
                (c.get("cores", 0), BATCH_TARGET, d["per_minute"], beside,
@@ -952,7 +956,10 @@ def write_page(res, figs, elapsed_s, command):
              "*Drawing* is each scene's render time less its scene loading and read-back; it includes "
              "llvmpipe's JIT compilation of shader variants at their first draw, which Mesa does lazily, "
              "so *shader compilation* is only the GLSL front end and linking. *Render child* is the isolated "
-             "render's cost beyond the work inside it (fork, waiting, handing images back). *Report files, "
+             "render's cost beyond the work inside it (fork, waiting, handing images back). *Reading goldens* "
+             "runs on a thread while the student's render runs, and *metrics* and *report pictures* are "
+             "summed over the threads that judge a lab's scenes side by side (up to one per core), so the "
+             "columns add up to more than the total, which is the process's wall time. *Report files, "
              "exit* is the rest of the process (report.json, report.html, exit). The last column grades "
              "against the reference rendered anew (`--no-cache`, as `shaderlab grade` did before it kept the "
              "reference's renders). `--no-cache` in both: every shader is compiled and nothing is kept between "
@@ -1000,6 +1007,9 @@ def write_page(res, figs, elapsed_s, command):
     L.append("| reference images | %.0f ms per lab (rendering the reference) | %.0f ms per lab (`--no-reference`: stored goldens) | the goldens are the reference images kept; `shaderlab goldens` refreshes them |" %
              (mean_lab_ref, mean_lab))
     L.append("| depth buffers of targets no pass tests, writes or grades depth in | allocated and cleared every scene | not allocated | `LabRunner::createTargets` in `framework/render/src/lab_targets.cpp`. No bundled lab has such a target (their full-screen targets say `\"depth\": \"none\"`); with those lines deleted from 05 and 06, rendering both took 1.8 MB less peak memory and drew identical images (measured by hand on 2026-11-25, not by this script) |")
+    L.append("| waiting for the student's render | the goldens read after it (29-74 ms per lab), the scenes then judged one after another | the goldens (or the cached reference's images, for the renderer the cache saw last) read on a thread while the child renders; the scenes judged on one thread per core: `check 02-toon` warm median 0.52 -> 0.37 s, `check 01-phong` 0.43 -> 0.29 s (measured by hand on 2026-11-27, 11 runs each, not by this script) | `gradeLab` and `judgeScenes` in `framework/grading/src/grading.cpp`; the hook `while_rendering` of `renderLabIsolated` |")
+    L.append("| the report pages after every lab of a run | every picture read and embedded in report.html again after each lab (476 ms for the 13 writes of a 12-lab grade) | pictures linked until the run ends, embedded once in the final page (206-230 ms) (measured by hand on 2026-11-27, not by this script) | `writeReports` in `framework/cli/command_grade.cpp` |")
+    L.append("| scans over every value of an image that matches | quantise8 through double, the NaN/Inf and identity tests value by value, each large block mapped and unmapped | one vectorised pass each, large blocks kept in the heap (`mallopt` in `framework/cli/main.cpp`): `BM_JudgeImageIdentical` 16.8 -> 6.0 ms (measured by hand on 2026-11-27, not by this script) | `grader/metrics/src/scoring.cpp`, `non_finite.cpp` |")
     L.extend(cached_skipped_row(res))
     L.append("| vertex attributes a program does not read | - | TANGENT, COLOR_0 and TEXCOORD_1 uploaded on the first draw by a program that declares them | `bindOptionalAttributes` in `framework/render/src/scene_upload.cpp`; positions, normals and TEXCOORD_0 are always uploaded |\n")
 
