@@ -12,6 +12,7 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <system_error>
 #include <thread>
 
 #include "grader/base/atomic_file.h"
@@ -356,7 +357,13 @@ std::vector<std::vector<JudgedImage>> judgeScenes(const LabGrading& lab,
     const std::size_t threads =
         std::min<std::size_t>(scenes.size(), std::max(1u, std::min(4u, std::thread::hardware_concurrency())));
     std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    for (std::size_t t = 1; t < threads; ++t) {
+        try {
+            pool.emplace_back(work);
+        } catch (const std::system_error&) {
+            break;  // no more threads to be had: the ones there (this one at least) do the rest
+        }
+    }
     work();
     for (std::thread& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);
@@ -635,10 +642,14 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         const std::string early_dir = stored_goldens          ? stored_dir
                                       : guessed_cache.empty() ? std::string()
                                                               : (fs::path(guessed_cache) / id).string();
-        if (!early_dir.empty())
-            early_goldens = std::async(std::launch::async, [&spec, early_dir]() {
-                return grading_detail::loadGoldens(spec, early_dir, {});
-            });
+        try {
+            if (!early_dir.empty())
+                early_goldens = std::async(std::launch::async, [&spec, early_dir]() {
+                    return grading_detail::loadGoldens(spec, early_dir, {});
+                });
+        } catch (const std::system_error&) {
+            // No thread to be had (a process limit): the goldens are read after the render.
+        }
     });
     ReferenceImages early = early_goldens.valid() ? early_goldens.get() : ReferenceImages{};
     if (student.status != IsolatedStatus::Ok) {

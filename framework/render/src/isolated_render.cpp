@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -511,7 +512,13 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
     g_render_child = pid;
     if (progress_pipe[1] >= 0) close(progress_pipe[1]);
     if (progress_pipe[0] >= 0) fcntl(progress_pipe[0], F_SETFL, O_NONBLOCK);
-    if (while_rendering) while_rendering();
+    // The caller's work meanwhile; should it throw, the child is still watched and reaped first.
+    std::exception_ptr meanwhile_failed;
+    try {
+        if (while_rendering) while_rendering();
+    } catch (...) {
+        meanwhile_failed = std::current_exception();
+    }
     ChildProgress progress(progress_pipe[0], options, &out, t0);
     ChildEnd end = watchChild(pid, limits, progress);
     progress.drain();
@@ -528,6 +535,7 @@ IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_
     if (!progress.drawing) out.compile_ms = out.wall_ms;
     judgeChild(limits, end, result_fd, &out);
     close(result_fd);
+    if (meanwhile_failed) std::rethrow_exception(meanwhile_failed);
     return out;
 }
 
