@@ -62,6 +62,9 @@ inline std::string checkPair(const Image& reference, const Image& test, const Ma
 // inputs have known results (PSNR infinite, SSIM 1, FLIP 0, no mismatch).
 // Defined in non_finite.cpp, which is built to vectorise its scans.
 bool identicalPixels(const Image& a, const Image& b);
+// True when quantise8 (scoring.h) would turn both images into the same one: the same size and
+// channels, and every value on the same of the 256 levels (NaN counts as 0). No copy is made.
+bool quantisedPixelsEqual(const Image& a, const Image& b);
 
 inline bool counts(const Mask* mask, std::size_t pixel) {
     return mask == nullptr || mask->values[pixel] != 0;

@@ -3,7 +3,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <utility>
+
+#include "image_access.h"
 
 namespace grader {
 
@@ -142,14 +145,6 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
     v.non_finite_box = nf.bounding_box;
     v.non_finite_first = nf.first_positions;
 
-    Image ref8, test8;
-    if (range == ImageRange::Hdr) {
-        toUnitRange(reference, test, &ref8, &test8, &v.hdr_scale);
-    } else {
-        ref8 = quantise8(reference);
-        test8 = quantise8(test);
-    }
-
     // Covered: drawn by the reference or by the student, so a missing object and an extra one
     // both count. When nothing is covered (a fullscreen pass, or an empty frame) the whole
     // frame is graded.
@@ -163,17 +158,42 @@ ImageVerdict judgeImage(const Image& reference, const std::vector<std::uint8_t>&
     v.covered_pixels = covered.count();
     if (v.covered_pixels == 0) covered = Mask(test.width, test.height, 1);
 
-    ToleranceCompareResult cmp;
-    FlipResult flip;
-    v.covered = measure(ref8, test8, &covered, thresholds.pixel_tolerance, &cmp, &flip);
-    // When every pixel is graded anyway the whole-frame numbers are the same: skip the work.
-    v.frame = covered.count() == n
-                  ? v.covered
-                  : measure(ref8, test8, nullptr, thresholds.pixel_tolerance, nullptr, nullptr);
-    v.worst = cmp.worst;
-    v.mismatches = std::move(cmp.mismatches);
+    if (range == ImageRange::Display && detail::quantisedPixelsEqual(reference, test)) {
+        // Both quantise to one image: what each metric gives when it finds its inputs identical
+        // (PSNR infinite, SSIM 1 where the image holds SSIM's window, FLIP 0 with an all-zero
+        // map, no mismatch), without either copy. MetricStress.QuantisedEqualImagesGetWhatThe-
+        // MetricsGive compares this with the metrics themselves, field by field.
+        const int side = 2 * ssimWindowRadius(SsimConfig{}.sigma) + 1;
+        MetricSet same;
+        same.psnr_db = std::numeric_limits<double>::infinity();
+        same.ssim_defined = test.width >= side && test.height >= side;
+        same.ssim = same.ssim_defined ? 1.0 : 0.0;
+        same.pixel_count = covered.count();
+        v.covered = same;
+        v.frame = same;
+        v.frame.pixel_count = n;
+        v.mismatches = Mask(test.width, test.height, 0);
+        v.flip_map.assign(n, 0.0f);
+    } else {
+        Image ref8, test8;
+        if (range == ImageRange::Hdr) {
+            toUnitRange(reference, test, &ref8, &test8, &v.hdr_scale);
+        } else {
+            ref8 = quantise8(reference);
+            test8 = quantise8(test);
+        }
+        ToleranceCompareResult cmp;
+        FlipResult flip;
+        v.covered = measure(ref8, test8, &covered, thresholds.pixel_tolerance, &cmp, &flip);
+        // When every pixel is graded anyway the whole-frame numbers are the same: skip the work.
+        v.frame = covered.count() == n
+                      ? v.covered
+                      : measure(ref8, test8, nullptr, thresholds.pixel_tolerance, nullptr, nullptr);
+        v.worst = cmp.worst;
+        v.mismatches = std::move(cmp.mismatches);
+        v.flip_map = std::move(flip.error_map);
+    }
     v.graded = covered;
-    v.flip_map = std::move(flip.error_map);
 
     v.checks_met = 0;
     if (v.covered.psnr_db >= thresholds.psnr_min_db)

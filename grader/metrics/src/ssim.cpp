@@ -36,7 +36,7 @@ namespace {
 // which gives 11 taps for sigma 1.5 (Wang et al. use an 11x11 window).
 detail::Kernel gaussianWindow(double sigma) {
     detail::Kernel kernel;
-    kernel.radius = static_cast<int>(3.5 * sigma + 0.5);
+    kernel.radius = ssimWindowRadius(sigma);
     std::vector<double> weights(2 * kernel.radius + 1);
     double sum = 0.0;
     for (int k = -kernel.radius; k <= kernel.radius; ++k) {
@@ -293,6 +293,8 @@ std::size_t countedPixels(int width, int height, int radius, const Mask* mask) {
 }
 
 }  // namespace
+
+int ssimWindowRadius(double sigma) { return static_cast<int>(3.5 * sigma + 0.5); }
 
 SsimResult computeSsim(const Image& reference, const Image& test, const SsimConfig& config) {
     SsimResult result;

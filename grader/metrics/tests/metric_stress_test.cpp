@@ -272,5 +272,91 @@ TEST(MetricStress, IdentityTestSeesEveryValue) {
     EXPECT_EQ(computeSsim(zero, negative).ssim, 1.0);
 }
 
+// Images that quantise to the same levels skip the metrics' copies in judgeImage; what they get
+// must be what measuring the quantised pair gives, field for field: with and without coverage,
+// coverage only in SSIM's border, none at all, images smaller than SSIM's window, values beyond
+// 0..1 and a NaN that quantises to the reference's 0.
+TEST(MetricStress, QuantisedEqualImagesGetWhatTheMetricsGive) {
+    struct Case {
+        int w, h;
+        int coverage;  // 0: none given, 1: a block, 2: a ring inside SSIM's border only, 3: all zero
+        bool nan;
+    };
+    for (const Case c :
+         {Case{64, 48, 0, false}, Case{64, 48, 1, false}, Case{64, 48, 2, false}, Case{64, 48, 3, false},
+          Case{8, 6, 1, false}, Case{20, 9, 0, false}, Case{33, 17, 1, true}}) {
+        SCOPED_TRACE(std::to_string(c.w) + "x" + std::to_string(c.h) + " coverage " +
+                     std::to_string(c.coverage) + (c.nan ? " with NaN" : ""));
+        Image reference = quantise8(noiseImage(c.w, c.h, 4, 31));
+        Image test = reference;
+        std::uint32_t state = 7;
+        for (float& v : test.pixels) {  // within 0.4 of a level of the reference's, either way
+            state = state * 1664525u + 1013904223u;
+            v += ((state >> 8) % 2 ? 0.4f : -0.4f) / 255.0f;
+        }
+        reference.pixels[0] = 0.0f, test.pixels[0] = c.nan ? std::numeric_limits<float>::quiet_NaN() : -3.0f;
+        reference.pixels[5] = 1.0f, test.pixels[5] = 7.0f;
+        const std::size_t n = static_cast<std::size_t>(c.w) * c.h;
+        std::vector<std::uint8_t> cov;
+        if (c.coverage != 0) {
+            cov.assign(n, 0);
+            for (int y = 0; y < c.h; ++y)
+                for (int x = 0; x < c.w; ++x) {
+                    const bool block = x > c.w / 4 && x < c.w / 2 && y > c.h / 4 && y < c.h / 2;
+                    const bool ring = x < 3 || y < 3;
+                    cov[static_cast<std::size_t>(y) * c.w + x] = c.coverage == 1   ? block
+                                                                 : c.coverage == 2 ? ring
+                                                                                   : 0;
+                }
+        }
+        const Thresholds t;
+        const ImageVerdict v = judgeImage(reference, cov, test, cov, t);
+
+        // What measuring the quantised pair gives (scoring.cpp's measure, spelled out).
+        const Image r8 = quantise8(reference), t8 = quantise8(test);
+        Mask covered(c.w, c.h, 1);
+        if (c.coverage != 0 && c.coverage != 3)
+            for (std::size_t i = 0; i < n; ++i) covered.values[i] = cov[i];
+        const auto expect = [&](const MetricSet& got, const Mask* mask) {
+            PsnrConfig pc;
+            pc.mask = mask;
+            const PsnrResult psnr = computePsnr(r8, t8, pc);
+            EXPECT_EQ(got.psnr_db, psnr.psnr_db);
+            EXPECT_EQ(got.pixel_count, psnr.pixel_count);
+            SsimConfig sc;
+            sc.mask = mask;
+            SsimResult ssim = computeSsim(r8, t8, sc);
+            if (!ssim.ok && mask) ssim = computeSsim(r8, t8, SsimConfig{});
+            EXPECT_EQ(got.ssim_defined, ssim.ok);
+            EXPECT_EQ(got.ssim, ssim.ok ? ssim.ssim : 0.0);
+            FlipConfig fc;
+            fc.mask = mask;
+            const FlipResult flip = computeFlip(r8, t8, fc);
+            EXPECT_EQ(got.flip_mean, flip.mean);
+            EXPECT_EQ(got.flip_weighted_median, flip.weighted_median);
+            ToleranceCompareConfig cc;
+            cc.mask = mask;
+            cc.tolerance = t.pixel_tolerance;
+            EXPECT_EQ(got.mismatch_fraction, compareShiftTolerant(r8, t8, cc).mismatch_fraction);
+        };
+        expect(v.covered, &covered);
+        expect(v.frame, nullptr);
+        FlipConfig fc;
+        fc.mask = &covered;
+        fc.want_map = true;
+        EXPECT_EQ(v.flip_map, computeFlip(r8, t8, fc).error_map);
+        ToleranceCompareConfig cc;
+        cc.mask = &covered;
+        cc.tolerance = t.pixel_tolerance;
+        const ToleranceCompareResult cmp = compareShiftTolerant(r8, t8, cc);
+        EXPECT_EQ(v.mismatches.values, cmp.mismatches.values);
+        EXPECT_TRUE(v.worst.tile.empty());
+        EXPECT_EQ(v.worst.mismatch_count, cmp.worst.mismatch_count);
+        EXPECT_EQ(v.graded.values, covered.values);
+        EXPECT_EQ(v.passed, !c.nan);
+        EXPECT_EQ(v.nan_count, c.nan ? 1u : 0u);
+    }
+}
+
 }  // namespace
 }  // namespace grader

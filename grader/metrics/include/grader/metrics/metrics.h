@@ -93,6 +93,9 @@ struct SsimResult {
 };
 
 SsimResult computeSsim(const Image& reference, const Image& test, const SsimConfig& config = {});
+// The window's radius for `sigma`, int(3.5 * sigma + 0.5): an image narrower or lower than
+// 2 * radius + 1 has no SSIM.
+int ssimWindowRadius(double sigma);
 
 // ---------------------------------------------------------------------------------------------
 // FLIP (LDR)
