@@ -60,6 +60,17 @@ inline std::string checkPair(const Image& reference, const Image& test, const Ma
 // True when both images hold the same values, channel for channel (float ==, so a NaN is never
 // identical and such images take the full path). Metrics use it to skip their filters: equal
 // inputs have known results (PSNR infinite, SSIM 1, FLIP 0, no mismatch).
+// The level of 0..255 that quantise8 (scoring.h) puts `v` on: round(clamp(v, 0, 1) * 255), NaN
+// as 0. Written so that loops over it vectorise (scoring.cpp and non_finite.cpp are built with
+// -ftree-vectorize): for 0 <= x <= 255, k = trunc(x) and x - k are exact in float, so
+// k + (x - k >= 0.5) is round-half-up of x, as floor(x + 0.5) in double is.
+inline int level8(float v) {
+    const float positive = v > 0.0f ? v : 0.0f;  // NaN fails v > 0: 0
+    const float x = (positive < 1.0f ? positive : 1.0f) * 255.0f;
+    const int k = static_cast<int>(x);
+    return k + (x - static_cast<float>(k) >= 0.5f ? 1 : 0);
+}
+
 // Defined in non_finite.cpp, which is built to vectorise its scans.
 bool identicalPixels(const Image& a, const Image& b);
 // True when quantise8 (scoring.h) would turn both images into the same one: the same size and

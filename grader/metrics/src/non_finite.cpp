@@ -52,54 +52,39 @@ NonFiniteResult scanNonFinite(const Image& image, const NonFiniteConfig& config)
 
 namespace detail {
 
-bool identicalPixels(const Image& a, const Image& b) {
-    if (a.channels != b.channels || a.pixels.size() != b.pixels.size()) return false;
-    const float* p = a.pixels.data();
-    const float* q = b.pixels.data();
-    const std::size_t n = a.pixels.size();
-    // Blocks of a fixed length without an exit inside, so that the compiler vectorises them; the
-    // first differing block ends the scan. float ==: a NaN is never identical, -0 equals +0.
+namespace {
+
+// True when `same(p[i], q[i])` holds for every i < n. Blocks of a fixed length without an exit
+// inside, so that the compiler vectorises them; the first block with a difference ends the scan.
+template <typename Same>
+bool everyValue(const float* p, const float* q, std::size_t n, Same same) {
     constexpr std::size_t kBlock = 256;
     std::size_t i = 0;
     for (; i + kBlock <= n; i += kBlock) {
         unsigned differs = 0;
-        for (std::size_t k = 0; k < kBlock; ++k) differs |= p[i + k] == q[i + k] ? 0u : 1u;
+        for (std::size_t k = 0; k < kBlock; ++k) differs |= same(p[i + k], q[i + k]) ? 0u : 1u;
         if (differs != 0) return false;
     }
     for (; i < n; ++i)
-        if (!(p[i] == q[i])) return false;
+        if (!same(p[i], q[i])) return false;
     return true;
 }
 
-namespace {
-
-// The level quantise8 (scoring.cpp) puts v on, 0..255, in the same exact steps.
-inline int level8(float v) {
-    const float positive = v > 0.0f ? v : 0.0f;  // NaN fails v > 0: 0
-    const float x = (positive < 1.0f ? positive : 1.0f) * 255.0f;
-    const int k = static_cast<int>(x);
-    return k + (x - static_cast<float>(k) >= 0.5f ? 1 : 0);
-}
-
 }  // namespace
+
+bool identicalPixels(const Image& a, const Image& b) {
+    if (a.channels != b.channels || a.pixels.size() != b.pixels.size()) return false;
+    // float ==: a NaN is never identical, -0 equals +0.
+    return everyValue(a.pixels.data(), b.pixels.data(), a.pixels.size(),
+                      [](float x, float y) { return x == y; });
+}
 
 bool quantisedPixelsEqual(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height || a.channels != b.channels ||
         a.pixels.size() != b.pixels.size())
         return false;
-    const float* p = a.pixels.data();
-    const float* q = b.pixels.data();
-    const std::size_t n = a.pixels.size();
-    constexpr std::size_t kBlock = 256;
-    std::size_t i = 0;
-    for (; i + kBlock <= n; i += kBlock) {
-        int differs = 0;
-        for (std::size_t k = 0; k < kBlock; ++k) differs |= level8(p[i + k]) ^ level8(q[i + k]);
-        if (differs != 0) return false;
-    }
-    for (; i < n; ++i)
-        if (level8(p[i]) != level8(q[i])) return false;
-    return true;
+    return everyValue(a.pixels.data(), b.pixels.data(), a.pixels.size(),
+                      [](float x, float y) { return level8(x) == level8(y); });
 }
 
 }  // namespace detail

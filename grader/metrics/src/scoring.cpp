@@ -73,18 +73,7 @@ std::pair<std::string, std::string> formatDistinct(double value, double limit, i
 
 Image quantise8(const Image& image) {
     Image out = image;
-    float* v = out.pixels.data();
-    const std::size_t n = out.pixels.size();
-    // round(c * 255) / 255 with c clamped to [0, 1], in a form the compiler vectorises (built with
-    // -ftree-vectorize, see CMakeLists.txt): for 0 <= x <= 255, k = trunc(x) and x - k are exact
-    // in float, so k + (x - k >= 0.5) is round-half-up of x, as floor(x + 0.5) in double is.
-    for (std::size_t i = 0; i < n; ++i) {
-        const float positive = v[i] > 0.0f ? v[i] : 0.0f;  // NaN fails v > 0: 0
-        const float x = (positive < 1.0f ? positive : 1.0f) * 255.0f;
-        const int k = static_cast<int>(x);
-        const int up = x - static_cast<float>(k) >= 0.5f ? 1 : 0;
-        v[i] = static_cast<float>(k + up) / 255.0f;
-    }
+    for (float& v : out.pixels) v = static_cast<float>(detail::level8(v)) / 255.0f;
     return out;
 }
 
