@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <future>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <system_error>
@@ -166,20 +167,33 @@ struct LabGrading {
     }
 };
 
-// The student first: a submission that does not build needs no reference at all.
+// How the student's lab is rendered: the submission's folder is the containment root and the
+// progress events carry the lab's id.
+RenderOptions studentRenderOptions(const std::string& submission_dir, const std::string& id,
+                                   const GradeOptions& options) {
+    RenderOptions render;
+    render.containment_root = submission_dir;
+    if (options.progress)
+        render.progress = [progress = options.progress, id](const std::string& event) {
+            progress(id, event);
+        };
+    return render;
+}
+
+// The student first: a submission that does not build needs no reference at all. From `queue`
+// when the submission's labs are rendered by one child, else by a child of its own.
 IsolatedRender renderStudent(const LabSpec& spec, const std::string& submission_dir, const std::string& id,
-                             const GradeOptions& options, std::string* renderer, grader::ReportLab* lab,
-                             const std::function<void()>& while_rendering) {
+                             const GradeOptions& options, IsolatedRenderQueue* queue, std::string* renderer,
+                             grader::ReportLab* lab, const std::function<void()>& while_rendering) {
     // What was graded, named in the report: the student files of this lab in this folder.
     lab->folder = fs::absolute(fs::path(submission_dir) / id).lexically_normal().string();
     lab->files = spec.student_files;
     ScopedTiming student_timing("render_child", id, "student");
-    IsolatedRender student = grading_detail::renderFrom(
-        spec, submission_dir, options.backend, options.limits,
-        options.progress ? std::function<void(const std::string&)>(
-                               [&](const std::string& event) { options.progress(id, event); })
-                         : std::function<void(const std::string&)>(),
-        while_rendering);
+    IsolatedRender student =
+        queue ? queue->next(while_rendering)
+              : renderLabIsolated(spec, (fs::path(submission_dir) / id).string(), options.backend,
+                                  options.limits, studentRenderOptions(submission_dir, id, options),
+                                  while_rendering);
     student_timing.stop();
     if (!student.renderer.empty()) *renderer = student.renderer;
     for (const Diagnostic& d : student.render.diagnostics) lab->diagnostics.push_back(toReportDiagnostic(d));
@@ -596,8 +610,11 @@ void scoreGoals(const LabSpec& spec,
     lab->goals = std::move(goals);
 }
 
+// Grades lab `id`, parsed as `parsed`. `queue`: the child rendering the submission's labs, whose
+// next lab is this one; null: a child of its own.
 grader::ReportLab gradeLab(const std::string& submission_dir, const std::string& id,
-                           const GradeOptions& options, std::string* renderer) {
+                           const LabSpecResult& parsed, const GradeOptions& options,
+                           IsolatedRenderQueue* queue, std::string* renderer) {
     grader::ReportLab lab;
     lab.id = id;
     ScopedTiming lab_timing("lab", id);
@@ -608,7 +625,6 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
         return lab;
     };
 
-    const LabSpecResult parsed = parseLabSpec((fs::path(options.labs_root) / id).string());
     if (!parsed.ok) {
         lab.status = "crashed";
         lab.message = "the lab itself is broken: " + joinReasons(parsed.errors);
@@ -618,8 +634,9 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     lab.title = spec.title;
     lab.max_score = spec.grading.points;
 
+    // (A lab in the queue had its folder when the queue was made: the child says if it is gone.)
     std::error_code ec;
-    if (!fs::is_directory(fs::path(submission_dir) / id, ec)) {
+    if (!queue && !fs::is_directory(fs::path(submission_dir) / id, ec)) {
         lab.status = "missing";
         lab.message =
             (fs::path(submission_dir) / id).string() + ": the submission has no folder for this lab";
@@ -629,29 +646,37 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     // Stored goldens (no reference solution to render), or the reference's images kept in the
     // cache for the renderer it saw last, are read while the student's render runs: on a thread
     // started once the render child exists (so that no thread runs at its fork) and joined here,
-    // before anything else forks. Read without knowing which scenes the render could not load: a
-    // missing golden of such a scene reads again below, skipping it.
+    // before anything else forks; with a queue, whose child is drawing this lab already and may
+    // have to start again, right away on this thread. Read without knowing which scenes the
+    // render could not load: a missing golden of such a scene reads again below, skipping it.
     std::string stored_dir =
         options.goldens_root.empty() ? spec.lab_dir : (fs::path(options.goldens_root) / id).string();
     const bool stored_goldens = !grading_detail::hasReference(options.reference_root, id);
     std::string guessed_cache;
     std::future<ReferenceImages> early_goldens;
-    const IsolatedRender student = renderStudent(spec, submission_dir, id, options, renderer, &lab, [&]() {
-        if (!stored_goldens && options.reference_cache_guess)
-            guessed_cache = options.reference_cache_guess(spec);
-        const std::string early_dir = stored_goldens          ? stored_dir
-                                      : guessed_cache.empty() ? std::string()
-                                                              : (fs::path(guessed_cache) / id).string();
-        try {
-            if (!early_dir.empty())
-                early_goldens = std::async(std::launch::async, [&spec, early_dir]() {
-                    return grading_detail::loadGoldens(spec, early_dir, {});
-                });
-        } catch (const std::system_error&) {
-            // No thread to be had (a process limit): the goldens are read after the render.
-        }
-    });
-    ReferenceImages early = early_goldens.valid() ? early_goldens.get() : ReferenceImages{};
+    ReferenceImages early;
+    const IsolatedRender student =
+        renderStudent(spec, submission_dir, id, options, queue, renderer, &lab, [&]() {
+            if (!stored_goldens && options.reference_cache_guess)
+                guessed_cache = options.reference_cache_guess(spec);
+            const std::string early_dir = stored_goldens          ? stored_dir
+                                          : guessed_cache.empty() ? std::string()
+                                                                  : (fs::path(guessed_cache) / id).string();
+            if (early_dir.empty()) return;
+            if (queue) {
+                early = grading_detail::loadGoldens(spec, early_dir, {});
+                return;
+            }
+            try {
+                if (!early_dir.empty())
+                    early_goldens = std::async(std::launch::async, [&spec, early_dir]() {
+                        return grading_detail::loadGoldens(spec, early_dir, {});
+                    });
+            } catch (const std::system_error&) {
+                // No thread to be had (a process limit): the goldens are read after the render.
+            }
+        });
+    if (early_goldens.valid()) early = early_goldens.get();
     if (student.status != IsolatedStatus::Ok) {
         lab.status = labStatusOf(student.status);
         lab.message = student.message;
@@ -740,8 +765,29 @@ grader::Report gradeSubmission(const std::string& submission_dir, const GradeOpt
     report.submission = submission_dir;
     report.backend = backendName(options.backend);
     const std::vector<std::string> ids = options.labs.empty() ? listLabIds(options.labs_root) : options.labs;
+    // Every lab is parsed first; those the submission has a folder for are rendered by one child,
+    // one after another (IsolatedRenderQueue), while the grader judges the lab before.
+    std::vector<LabSpecResult> parsed;
+    std::vector<IsolatedLabJob> jobs;
+    std::vector<bool> queued;
+    parsed.reserve(ids.size());  // the jobs point into it
     for (const std::string& id : ids) {
-        grader::ReportLab lab = gradeLab(submission_dir, id, options, &report.renderer);
+        parsed.push_back(parseLabSpec((fs::path(options.labs_root) / id).string()));
+        std::error_code ec;
+        queued.push_back(parsed.back().ok && fs::is_directory(fs::path(submission_dir) / id, ec));
+        if (queued.back())
+            jobs.push_back({&parsed.back().spec, (fs::path(submission_dir) / id).string(),
+                            studentRenderOptions(submission_dir, id, options)});
+    }
+    std::unique_ptr<IsolatedRenderQueue> queue;
+    if (jobs.size() > 1) {
+        queue = std::make_unique<IsolatedRenderQueue>(std::move(jobs), options.backend, options.limits);
+        queue->start();
+    }
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const std::string& id = ids[i];
+        grader::ReportLab lab = gradeLab(submission_dir, id, parsed[i], options,
+                                         queued[i] ? queue.get() : nullptr, &report.renderer);
         report.score += lab.score;
         report.max_score += lab.max_score;
         report.labs.push_back(std::move(lab));

@@ -12,12 +12,14 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -31,18 +33,36 @@ namespace shaderlab {
 
 namespace {
 
-// The render child in flight (its process group), so that a grader stopped by SIGTERM, SIGINT
-// or SIGHUP takes it along. (SIGKILL cannot be caught: PR_SET_PDEATHSIG covers it.)
-volatile sig_atomic_t g_render_child = 0;
+// The render children in flight (their process groups), so that a grader stopped by SIGTERM,
+// SIGINT or SIGHUP takes them along. (SIGKILL cannot be caught: PR_SET_PDEATHSIG covers it.)
+// A queue's child may be drawing while a lone render of another lab runs beside it.
+constexpr int kChildSlots = 8;
+volatile sig_atomic_t g_render_children[kChildSlots] = {};
 
 void stopChildAndDie(int sig) {
-    const pid_t child = static_cast<pid_t>(g_render_child);
-    if (child > 0) {
-        kill(-child, SIGKILL);
-        kill(child, SIGKILL);
+    for (int i = 0; i < kChildSlots; ++i) {
+        const pid_t child = static_cast<pid_t>(g_render_children[i]);
+        if (child > 0) {
+            kill(-child, SIGKILL);
+            kill(child, SIGKILL);
+        }
     }
     signal(sig, SIG_DFL);
     raise(sig);
+}
+
+void rememberChild(pid_t pid) {
+    for (int i = 0; i < kChildSlots; ++i)
+        if (g_render_children[i] == 0) {
+            g_render_children[i] = pid;
+            return;
+        }
+    // More than kChildSlots at once: PR_SET_PDEATHSIG still takes this one along.
+}
+
+void forgetChild(pid_t pid) {
+    for (int i = 0; i < kChildSlots; ++i)
+        if (g_render_children[i] == pid) g_render_children[i] = 0;
 }
 
 void installStopHandlers() {
@@ -56,15 +76,17 @@ void installStopHandlers() {
     }
 }
 
-// The result file: a header written last (so a child that dies half-way leaves no header), the
-// raw images, then result.json. All offsets are from the start of the file.
-struct ResultHeader {
-    char magic[8];
-    std::uint64_t json_offset;
-    std::uint64_t json_size;
-};
-constexpr char kMagic[8] = {'S', 'L', 'R', 'E', 'S', 'U', 'L', 'T'};
+// Between a child and its parent: a pipe of lines, and an anonymous file of results. The child
+// says "L <lab>" when it begins a lab, "e <event>" for each progress event, and, once it has
+// written a lab's raw images and then its result.json into the file, "R <lab> <offset> <size>"
+// where that JSON lies. Labs are numbered by their place in the queue; offsets are from the start
+// of the file. A child that dies half-way leaves no "R" line for its lab.
 constexpr std::uint64_t kMaxResultJson = 64u << 20;
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 bool writeAt(int fd, const void* data, std::size_t n, std::uint64_t offset) {
     const char* p = static_cast<const char*>(data);
@@ -88,70 +110,27 @@ bool readAt(int fd, void* data, std::size_t n, std::uint64_t offset) {
     return true;
 }
 
-// Child side: render, then write the images and result.json into the result file. Never returns.
-[[noreturn]] void childMain(const LabSpec& spec, const std::string& shader_dir, Backend backend,
-                            const IsolationLimits& limits, RenderOptions options, int result_fd,
-                            pid_t parent_pid, int progress_fd) {
-    // Its own process group: the parent stops the child and anything it started with one
-    // kill(), and a terminal's Ctrl-C reaches the grader, which then stops the child.
-    setpgid(0, 0);
-    // Die with the grader: a parent killed by a batch system's time limit (SIGKILL) must not
-    // leave a child spinning on a shader. If it is already gone, stop now.
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent_pid) _exit(1);
-    for (int sig : {SIGTERM, SIGINT, SIGHUP}) signal(sig, SIG_DFL);
-#if !SHADERLAB_ASAN
-    // The parent watches resident memory; this is the backstop for an allocation faster than its
-    // polling. Not under AddressSanitizer: it reserves terabytes of address space for its shadow
-    // memory up front, so under the cap its allocations would fail; the parent's watch still holds.
-    rlimit as{};
-    as.rlim_cur = as.rlim_max = limits.memory_bytes + kAddressSpaceHeadroom;
-    setrlimit(RLIMIT_AS, &as);
-#endif
-    // A backstop should the parent's clock fail: CPU seconds of all the driver's threads.
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    rlimit cpu{};
-    cpu.rlim_cur = cpu.rlim_max =
-        static_cast<rlim_t>((limits.timeout_s + limits.compile_timeout_s) * threads + 10.0);
-    setrlimit(RLIMIT_CPU, &cpu);
-    rlimit core{};  // a crashing driver should not litter core files
-    setrlimit(RLIMIT_CORE, &core);
-
-    json result;
-    std::uint64_t end = sizeof(ResultHeader);
-    ContextResult ctx = createHeadlessContext(backend);
-    if (!ctx.context) {
-        result["status"] = "render_error";
-        result["message"] = ctx.error;
-    } else {
-        result["renderer"] = ctx.context->info().renderer + ", OpenGL " + ctx.context->info().version;
-        // Progress goes to the parent line by line, so it can say where a render stopped and
-        // which of its clocks runs.
-        options.progress = [progress_fd](const std::string& event) {
-            const std::string line = event + "\n";
-            for (std::size_t done = 0; done < line.size();) {
-                const ssize_t n = write(progress_fd, line.data() + done, line.size() - done);
-                if (n <= 0 && errno != EINTR) return;
-                if (n > 0) done += static_cast<std::size_t>(n);
-            }
-        };
-        const LabRender r = renderLab(spec, shader_dir, options);
-        result["status"] = renderStatusName(r.status);
-        result["message"] = r.message;
-        result["endless_loop"] = r.endless_loop;
+// The child's part of a lab: its images into the result file from `*end` on, then its
+// result.json after them; returns where the JSON lies, or exits on a failed write.
+std::pair<std::uint64_t, std::uint64_t> writeLabResult(json result, const LabRender* r, int result_fd,
+                                                       std::uint64_t* end) {
+    if (r) {
+        result["status"] = renderStatusName(r->status);
+        result["message"] = r->message;
+        result["endless_loop"] = r->endless_loop;
         json diags = json::array();
-        for (const Diagnostic& d : r.diagnostics) diags.push_back(diagnosticToJson(d));
+        for (const Diagnostic& d : r->diagnostics) diags.push_back(diagnosticToJson(d));
         result["diagnostics"] = diags;
         json scenes = json::array();
-        for (const SceneRender& s : r.scenes) {
+        for (const SceneRender& s : r->scenes) {
             json passes = json::array();
             for (const PassImage& p : s.passes) {
                 const std::size_t color_bytes = p.color.pixels.size() * sizeof(float);
-                const std::uint64_t color_at = end, coverage_at = end + color_bytes;
+                const std::uint64_t color_at = *end, coverage_at = *end + color_bytes;
                 if (!writeAt(result_fd, p.color.pixels.data(), color_bytes, color_at) ||
                     !writeAt(result_fd, p.coverage.data(), p.coverage.size(), coverage_at))
                     _exit(3);
-                end = coverage_at + p.coverage.size();
+                *end = coverage_at + p.coverage.size();
                 passes.push_back({{"pass", p.pass},
                                   {"target", p.target},
                                   {"attachment", p.attachment},
@@ -168,12 +147,85 @@ bool readAt(int fd, void* data, std::size_t n, std::uint64_t offset) {
     }
     // Shader logs may hold any bytes the student typed: replace invalid UTF-8 rather than throw.
     const std::string text = result.dump(-1, ' ', false, json::error_handler_t::replace);
-    ResultHeader header{};
-    std::memcpy(header.magic, kMagic, sizeof kMagic);
-    header.json_offset = end;
-    header.json_size = text.size();
-    if (!writeAt(result_fd, text.data(), text.size(), end) || !writeAt(result_fd, &header, sizeof header, 0))
-        _exit(3);
+    const std::uint64_t at = *end;
+    if (!writeAt(result_fd, text.data(), text.size(), at)) _exit(3);
+    *end = at + text.size();
+    return {at, text.size()};
+}
+
+// Child side: one context, then the labs from `first` on, each handed back as it is done (the
+// protocol above). Never returns.
+[[noreturn]] void childMain(const std::vector<IsolatedLabJob>& jobs, std::size_t first, Backend backend,
+                            const IsolationLimits& limits, int result_fd, pid_t parent_pid, int progress_fd) {
+    const auto child_start = Clock::now();
+    // Its own process group: the parent stops the child and anything it started with one
+    // kill(), and a terminal's Ctrl-C reaches the grader, which then stops the child.
+    setpgid(0, 0);
+    // Die with the grader: a parent killed by a batch system's time limit (SIGKILL) must not
+    // leave a child spinning on a shader. If it is already gone, stop now.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent_pid) _exit(1);
+    for (int sig : {SIGTERM, SIGINT, SIGHUP}) signal(sig, SIG_DFL);
+#if !SHADERLAB_ASAN
+    // The parent watches resident memory; this is the backstop for an allocation faster than its
+    // polling. Not under AddressSanitizer: it reserves terabytes of address space for its shadow
+    // memory up front, so under the cap its allocations would fail; the parent's watch still holds.
+    rlimit as{};
+    as.rlim_cur = as.rlim_max = limits.memory_bytes + kAddressSpaceHeadroom;
+    setrlimit(RLIMIT_AS, &as);
+#endif
+    // A backstop should the parent's clock fail: CPU seconds of all the driver's threads, for
+    // every lab this child is given.
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    rlimit cpu{};
+    cpu.rlim_cur = cpu.rlim_max = static_cast<rlim_t>((limits.timeout_s + limits.compile_timeout_s) *
+                                                          threads * static_cast<double>(jobs.size() - first) +
+                                                      10.0);
+    setrlimit(RLIMIT_CPU, &cpu);
+    rlimit core{};  // a crashing driver should not litter core files
+    setrlimit(RLIMIT_CORE, &core);
+
+    // One line to the parent; it says where a render stopped and which of its clocks runs.
+    auto say = [progress_fd](const std::string& text) {
+        const std::string line = text + "\n";
+        for (std::size_t done = 0; done < line.size();) {
+            const ssize_t n = write(progress_fd, line.data() + done, line.size() - done);
+            if (n <= 0 && errno != EINTR) return;
+            if (n > 0) done += static_cast<std::size_t>(n);
+        }
+    };
+    std::uint64_t end = 0;
+    ContextResult ctx = createHeadlessContext(backend);
+    const std::string renderer =
+        ctx.context ? ctx.context->info().renderer + ", OpenGL " + ctx.context->info().version
+                    : std::string();
+    auto lab_start = child_start;  // the first lab's time includes the context's
+    for (std::size_t k = first; k < jobs.size(); ++k) {
+        say("L " + std::to_string(k));
+        json result;
+        double compile_ms = -1.0;
+        std::pair<std::uint64_t, std::uint64_t> where;
+        if (!ctx.context) {
+            result["status"] = "render_error";
+            result["message"] = ctx.error;
+            where = writeLabResult(std::move(result), nullptr, result_fd, &end);
+        } else {
+            result["renderer"] = renderer;
+            RenderOptions options = jobs[k].options;
+            options.progress = [&](const std::string& event) {
+                if (compile_ms < 0.0 && event.rfind("compile ", 0) != 0) compile_ms = msSince(lab_start);
+                say("e " + event);
+            };
+            const LabRender r = renderLab(*jobs[k].spec, jobs[k].shader_dir, options);
+            const double wall_ms = msSince(lab_start);
+            result["wall_ms"] = wall_ms;
+            result["compile_ms"] = compile_ms < 0.0 ? wall_ms : compile_ms;
+            where = writeLabResult(std::move(result), &r, result_fd, &end);
+        }
+        say("R " + std::to_string(k) + " " + std::to_string(where.first) + " " +
+            std::to_string(where.second));
+        lab_start = Clock::now();
+    }
     // _exit: skip atexit handlers and static destructors of the copied parent state.
     std::fflush(nullptr);
     _exit(0);
@@ -229,24 +281,23 @@ int integer(const json& object, const char* key) {
     return static_cast<int>(std::clamp<std::int64_t>(v, INT32_MIN, INT32_MAX));
 }
 
-// Parent side: read what the child wrote, trusting nothing about sizes.
-bool readChildResult(int fd, IsolatedRender* out) {
+// Parent side: read one lab's result where the child said it lies, trusting nothing about sizes.
+bool readChildResult(int fd, std::uint64_t json_offset, std::uint64_t json_size, IsolatedRender* out) {
     struct stat st {};
-    if (fstat(fd, &st) != 0 || st.st_size < static_cast<off_t>(sizeof(ResultHeader))) return false;
+    if (fstat(fd, &st) != 0 || st.st_size <= 0) return false;
     const std::uint64_t size = static_cast<std::uint64_t>(st.st_size);
-    ResultHeader header{};
-    if (!readAt(fd, &header, sizeof header, 0) || std::memcmp(header.magic, kMagic, sizeof kMagic) != 0)
-        return false;
-    if (header.json_size > kMaxResultJson || header.json_offset > size ||
-        header.json_size > size - header.json_offset)
-        return false;
-    std::string bytes(header.json_size, '\0');
-    if (!readAt(fd, bytes.data(), bytes.size(), header.json_offset)) return false;
+    if (json_size > kMaxResultJson || json_offset > size || json_size > size - json_offset) return false;
+    std::string bytes(json_size, '\0');
+    if (!readAt(fd, bytes.data(), bytes.size(), json_offset)) return false;
     const json result = json::parse(bytes, nullptr, false);
     if (result.is_discarded() || !result.is_object()) return false;
     out->status = statusFromName(result.value("status", ""));
     out->message = text(result, "message");
     out->renderer = text(result, "renderer", 500);
+    // The child's own clock (the parent may have been busy when the lab ended): for reports only.
+    const double wall_ms = result.value("wall_ms", -1.0), compile_ms = result.value("compile_ms", -1.0);
+    if (std::isfinite(wall_ms) && wall_ms >= 0.0) out->wall_ms = wall_ms;
+    if (std::isfinite(compile_ms) && compile_ms >= 0.0) out->compile_ms = std::min(compile_ms, out->wall_ms);
     out->render.status = renderStatusOf(out->status);
     out->render.message = out->message;
     // A loop stopped by the loop guard (shader_program.h): as good as a timeout, said as such.
@@ -324,91 +375,18 @@ std::string seconds(double s) {
     return buf;
 }
 
-// The child's progress as the parent reads it: a pipe the child writes one line per event into.
-struct ChildProgress {
-    ChildProgress(int read_fd, const RenderOptions& render_options, IsolatedRender* result,
-                  std::chrono::steady_clock::time_point start)
-        : fd(read_fd), options(render_options), out(*result), t0(start), phase_start(start) {}
-
-    // Reads what the child reported so far: the caller hears every event, and the last one says
-    // where a render that has to be stopped was.
-    void drain() {
-        if (fd < 0) return;
-        char buf[4096];
-        for (;;) {
-            const ssize_t n = read(fd, buf, sizeof buf);
-            if (n <= 0) break;
-            pending.append(buf, static_cast<std::size_t>(n));
-        }
-        for (std::size_t nl = pending.find('\n'); nl != std::string::npos; nl = pending.find('\n')) {
-            const std::string event = grader::printableText(std::string_view(pending).substr(0, nl), 1000);
-            pending.erase(0, nl + 1);
-            if (!drawing && event.rfind("compile ", 0) != 0) {
-                drawing = true;
-                phase_start = std::chrono::steady_clock::now();
-                out.compile_ms = std::chrono::duration<double, std::milli>(phase_start - t0).count();
-            }
-            if (event.rfind("done ", 0) != 0) out.last_event = event;
-            if (options.progress) options.progress(event);
-        }
-        if (pending.size() > 1000000) pending.clear();  // a line without end: not ours
-    }
-
-    const int fd;  // the pipe's read end; -1: none
-    const RenderOptions& options;
-    IsolatedRender& out;
-    const std::chrono::steady_clock::time_point t0;
-    std::string pending;
-    bool drawing = false;  // the child reported its first scene: the draw clock runs
-    std::chrono::steady_clock::time_point phase_start;
-};
-
-// How watching a child ended: `finished` is false when a limit ran out (out.limit names it).
+// How a child's part in one lab ended: `finished` is false when a limit ran out (the result's
+// `limit` names it); `lost`: reaped elsewhere.
 struct ChildEnd {
     int wstatus = 0;
-    bool finished = false, lost = false;  // lost: reaped elsewhere
+    bool finished = false, lost = false;
 };
 
-ChildEnd watchChild(pid_t pid, const IsolationLimits& limits, ChildProgress& progress) {
-    IsolatedRender& out = progress.out;
-    ChildEnd end;
-    // Poll rather than block: the parent must be able to give up on a child that never ends or
-    // grows too large.
-    while (true) {
-        const pid_t r = waitpid(pid, &end.wstatus, WNOHANG);
-        if (r == pid) {
-            end.finished = true;
-            break;
-        }
-        if (r < 0 && errno != EINTR) {  // reaped elsewhere: judge by what it left behind
-            end.finished = end.lost = true;
-            break;
-        }
-        progress.drain();
-        const auto now = std::chrono::steady_clock::now();
-        const double in_phase = std::chrono::duration<double>(now - progress.phase_start).count();
-        if (in_phase > (progress.drawing ? limits.timeout_s : limits.compile_timeout_s)) {
-            out.limit = progress.drawing ? "draw_timeout" : "compile_timeout";
-            break;
-        }
-        const std::size_t rss = residentBytes(pid);
-        out.peak_rss_bytes = std::max(out.peak_rss_bytes, rss);
-        if (rss > limits.memory_bytes) {
-            out.limit = "memory";
-            break;
-        }
-        const double elapsed = std::chrono::duration<double>(now - progress.t0).count();
-        std::this_thread::sleep_for(std::chrono::milliseconds(elapsed < 1.0 ? 2 : 10));
-    }
-    return end;
-}
-
-// The status and message of a child that ended or was killed: the limit that ran out, the signal
-// it died of, or else the result it wrote.
-void judgeChild(const IsolationLimits& limits, const ChildEnd& end, int result_fd, IsolatedRender* result) {
+// The status and message of a lab whose child ended or was killed before handing it back: the
+// limit that ran out, the signal it died of, or an exit without a result.
+void chargeChild(const IsolationLimits& limits, const ChildEnd& end, IsolatedRender* result) {
     IsolatedRender& out = *result;
     const int wstatus = end.wstatus;
-    const bool lost = end.lost;
     const std::string where = whereItStopped(out.last_event);
     if (out.limit == "compile_timeout") {
         out.status = IsolatedStatus::Timeout;
@@ -426,7 +404,7 @@ void judgeChild(const IsolationLimits& limits, const ChildEnd& end, int result_f
         out.message = "memory limit: the render process used more than " +
                       std::to_string(limits.memory_bytes >> 20) + " MiB" + where +
                       " (a huge array, or a macro that doubles itself?); the process was killed";
-    } else if (!lost && WIFSIGNALED(wstatus)) {
+    } else if (!end.lost && WIFSIGNALED(wstatus)) {
         out.status = IsolatedStatus::Crashed;
         const int sig = WTERMSIG(wstatus);
         out.message = std::string("the render process died of signal ") + std::to_string(sig) + " (" +
@@ -434,21 +412,290 @@ void judgeChild(const IsolationLimits& limits, const ChildEnd& end, int result_f
         if (sig == SIGKILL || sig == SIGSEGV || sig == SIGABRT)
             out.message += "; the shader may have crashed the driver or exceeded the memory limit";
         if (sig == SIGXCPU) out.message += "; it used more processor time than its limits allow";
-    } else if (!readChildResult(result_fd, &out)) {
+    } else {
         out.status = IsolatedStatus::Crashed;
         out.message =
-            (lost ? std::string("the render process ended")
-                  : "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) + ")") +
+            (end.lost ? std::string("the render process ended")
+                      : "the render process exited (code " + std::to_string(WEXITSTATUS(wstatus)) + ")") +
             " without a readable result" + where + "; out of memory?";
+    }
+}
+
+}  // namespace
+
+struct IsolatedRenderQueue::State {
+    std::vector<IsolatedLabJob> jobs;
+    Backend backend = Backend::OSMesa;
+    IsolationLimits limits;
+    std::size_t next = 0;  // the lab next() hands back
+
+    // The child in flight, if any.
+    pid_t pid = -1;
+    std::size_t first = 0;  // the first lab it was given
+    int result_fd = -1, progress_fd = -1;
+    std::string pending;             // bytes of the pipe not yet taken as lines
+    std::size_t current = SIZE_MAX;  // the lab it said it began
+    bool drawing = false;            // the lab `next` reported its first scene: the draw clock runs
+    Clock::time_point lab_start, phase_start;
+    std::map<std::size_t, std::pair<std::uint64_t, std::uint64_t>> ready;  // lab -> its result.json
+    std::uint64_t freed_to = 0;  // the result file below this is handed back and freed
+
+    bool sigchld_saved = false;
+    struct sigaction old_chld {};
+
+    bool startChild(std::string* error);
+    void stopChild();  // kills (if running) and reaps it, and closes its files
+    void takeLines(IsolatedRender* out);
+    ChildEnd watch(IsolatedRender* out);
+};
+
+bool IsolatedRenderQueue::State::startChild(std::string* error) {
+    // An anonymous file: the parent keeps it open, the child writes into it, and it is gone
+    // with the last descriptor however either process ends.
+    result_fd = memfd_create("shaderlab-render", MFD_CLOEXEC);
+    if (result_fd < 0) {
+        *error = std::string("cannot create the result file: ") + std::strerror(errno);
+        return false;
+    }
+    installStopHandlers();
+    std::fflush(nullptr);  // buffered output would otherwise be written twice
+    // An inherited SIG_IGN for SIGCHLD would make the kernel reap the child itself and waitpid
+    // fail; the default disposition is restored while the queue lives.
+    if (!sigchld_saved) {
+        struct sigaction dfl {};
+        dfl.sa_handler = SIG_DFL;
+        sigemptyset(&dfl.sa_mask);
+        sigaction(SIGCHLD, &dfl, &old_chld);
+        sigchld_saved = true;
+    }
+    int progress_pipe[2] = {-1, -1};
+    if (pipe2(progress_pipe, O_CLOEXEC) != 0) {
+        *error = std::string("cannot create a pipe: ") + std::strerror(errno);
+        close(result_fd);
+        result_fd = -1;
+        return false;
+    }
+    const pid_t parent_pid = getpid();
+    const auto t0 = Clock::now();
+    const pid_t child = fork();
+    if (child < 0) {
+        *error = std::string("fork failed: ") + std::strerror(errno);
+        for (int fd : progress_pipe) close(fd);
+        close(result_fd);
+        result_fd = -1;
+        return false;
+    }
+    if (child == 0) {
+        close(progress_pipe[0]);
+        childMain(jobs, next, backend, limits, result_fd, parent_pid, progress_pipe[1]);
+    }
+    setpgid(child, child);  // as the child does itself: whichever runs first
+    rememberChild(child);
+    pid = child;
+    close(progress_pipe[1]);
+    progress_fd = progress_pipe[0];
+    fcntl(progress_fd, F_SETFL, O_NONBLOCK);
+    first = next;
+    current = SIZE_MAX;
+    drawing = false;
+    lab_start = phase_start = t0;
+    pending.clear();
+    ready.clear();
+    freed_to = 0;
+    return true;
+}
+
+void IsolatedRenderQueue::State::stopChild() {
+    if (pid > 0) {
+        kill(-pid, SIGKILL);
+        kill(pid, SIGKILL);
+        // A child stuck in the kernel (a GPU driver) may take a while to die; it is reaped.
+        int wstatus = 0;
+        while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+        }
+        forgetChild(pid);
+    }
+    pid = -1;
+    if (progress_fd >= 0) close(progress_fd);
+    if (result_fd >= 0) close(result_fd);
+    progress_fd = result_fd = -1;
+}
+
+// Reads what the child reported so far and takes its lines up to the end of lab `next`: the
+// caller hears every event of that lab, and the last one says where a render that has to be
+// stopped was. Lines of the labs after it wait for the next call.
+void IsolatedRenderQueue::State::takeLines(IsolatedRender* out) {
+    if (progress_fd < 0) return;
+    char buf[4096];
+    for (;;) {
+        const ssize_t n = read(progress_fd, buf, sizeof buf);
+        if (n <= 0) break;
+        pending.append(buf, static_cast<std::size_t>(n));
+    }
+    std::size_t from = 0;
+    for (std::size_t nl = pending.find('\n'); nl != std::string::npos && !ready.count(next);
+         nl = pending.find('\n', from)) {
+        const std::string_view line = std::string_view(pending).substr(from, nl - from);
+        from = nl + 1;
+        if (line.size() < 2 || line[1] != ' ') continue;  // not ours
+        const std::string_view rest = line.substr(2);
+        if (line[0] == 'e' && current == next) {
+            const std::string event = grader::printableText(rest, 1000);
+            if (!drawing && event.rfind("compile ", 0) != 0) {
+                drawing = true;
+                phase_start = Clock::now();
+                out->compile_ms = std::chrono::duration<double, std::milli>(phase_start - lab_start).count();
+            }
+            if (event.rfind("done ", 0) != 0) out->last_event = event;
+            const std::function<void(const std::string&)>& progress = jobs[next].options.progress;
+            if (progress) progress(event);
+        } else if (line[0] == 'L' || line[0] == 'R') {
+            unsigned long long lab = 0, at = 0, size = 0;
+            const std::string fields(rest);
+            const int got = std::sscanf(fields.c_str(), "%llu %llu %llu", &lab, &at, &size);
+            if (got < 1 || lab != next) continue;  // the child says labs in order, this one next
+            if (line[0] == 'L') {
+                current = next;
+            } else if (got == 3) {
+                ready[next] = {at, size};
+                // The next lab's clocks start now: its compile clock runs until its first scene.
+                drawing = false;
+                lab_start = phase_start = Clock::now();
+            }
+        }
+    }
+    pending.erase(0, from);
+    if (pending.size() > 1000000) pending.clear();  // a line without end: not ours
+}
+
+// Waits for lab `next`: until the child hands it back, ends, or meets a limit.
+ChildEnd IsolatedRenderQueue::State::watch(IsolatedRender* out) {
+    ChildEnd end;
+    // Poll rather than block: the parent must be able to give up on a child that never ends or
+    // grows too large.
+    while (true) {
+        const pid_t r = waitpid(pid, &end.wstatus, WNOHANG);
+        if (r == pid || (r < 0 && errno != EINTR)) {  // ended, or reaped elsewhere
+            end.finished = true;
+            end.lost = r != pid;
+            forgetChild(pid);
+            pid = -1;
+            takeLines(out);
+            return end;
+        }
+        takeLines(out);
+        if (ready.count(next)) {
+            end.finished = true;
+            return end;
+        }
+        const auto now = Clock::now();
+        const double in_phase = std::chrono::duration<double>(now - phase_start).count();
+        if (in_phase > (drawing ? limits.timeout_s : limits.compile_timeout_s)) {
+            out->limit = drawing ? "draw_timeout" : "compile_timeout";
+            return end;
+        }
+        const std::size_t rss = residentBytes(pid);
+        out->peak_rss_bytes = std::max(out->peak_rss_bytes, rss);
+        if (rss > limits.memory_bytes) {
+            out->limit = "memory";
+            return end;
+        }
+        const double elapsed = std::chrono::duration<double>(now - lab_start).count();
+        std::this_thread::sleep_for(std::chrono::milliseconds(elapsed < 1.0 ? 2 : 10));
+    }
+}
+
+IsolatedRenderQueue::IsolatedRenderQueue(std::vector<IsolatedLabJob> jobs, Backend backend,
+                                         const IsolationLimits& limits)
+    : state_(std::make_unique<State>()) {
+    state_->jobs = std::move(jobs);
+    state_->backend = backend;
+    state_->limits = limits;
+}
+
+IsolatedRenderQueue::~IsolatedRenderQueue() {
+    state_->stopChild();
+    if (state_->sigchld_saved) sigaction(SIGCHLD, &state_->old_chld, nullptr);
+}
+
+std::size_t IsolatedRenderQueue::handedBack() const { return state_->next; }
+
+void IsolatedRenderQueue::start() {
+    State& s = *state_;
+    std::string error;
+    if (s.pid < 0 && s.next < s.jobs.size() && !s.startChild(&error)) s.stopChild();
+}
+
+IsolatedRender IsolatedRenderQueue::next(const std::function<void()>& while_rendering) {
+    State& s = *state_;
+    IsolatedRender out;
+    if (s.next >= s.jobs.size()) {
+        out.status = IsolatedStatus::RenderError;
+        out.message = out.render.message = "no lab left to render";
+        out.render.status = RenderStatus::RenderError;
+        return out;
+    }
+    std::exception_ptr meanwhile_failed;
+    bool meanwhile_done = !while_rendering;
+    for (;;) {
+        std::string error;
+        if (s.pid < 0 && !s.startChild(&error)) {
+            s.stopChild();
+            out.status = IsolatedStatus::RenderError;
+            out.message = out.render.message = error;
+            out.render.status = RenderStatus::RenderError;
+            break;
+        }
+        // The caller's work meanwhile; should it throw, the child is still watched and reaped first.
+        if (!meanwhile_done) {
+            meanwhile_done = true;
+            try {
+                while_rendering();
+            } catch (...) {
+                meanwhile_failed = std::current_exception();
+            }
+        }
+        const bool first = s.next == s.first;
+        const ChildEnd end = s.watch(&out);
+        const auto found = s.ready.find(s.next);
+        if (found != s.ready.end()) {
+            const bool read = readChildResult(s.result_fd, found->second.first, found->second.second, &out);
+            // What is handed back is freed: a child running ahead holds only the labs not taken yet.
+            const std::uint64_t taken = found->second.first + found->second.second;
+            if (read && taken > s.freed_to) {
+                fallocate(s.result_fd, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE,
+                          static_cast<off_t>(s.freed_to), static_cast<off_t>(taken - s.freed_to));
+                s.freed_to = taken;
+            }
+            if (s.pid < 0) s.stopChild();  // it ended: close its files
+            if (!read) {
+                s.stopChild();
+                out = IsolatedRender{};
+                out.status = IsolatedStatus::Crashed;
+                out.message = "the render process handed back a result that cannot be read";
+            }
+            break;
+        }
+        // No result: a limit ran out, or the child ended without it.
+        out.wall_ms = msSince(s.lab_start);
+        if (!s.drawing) out.compile_ms = out.wall_ms;
+        s.stopChild();
+        if (!first && out.limit != "compile_timeout" && out.limit != "draw_timeout") {
+            out = IsolatedRender{};  // again, in a child of its own
+            continue;
+        }
+        chargeChild(s.limits, end, &out);
+        break;
     }
     if (out.status == IsolatedStatus::Timeout || out.status == IsolatedStatus::Crashed) {
         out.render.status = RenderStatus::RenderError;
         out.render.scenes.clear();  // an interrupted render's images are not graded
         out.render.message = out.message;
     }
+    ++s.next;
+    if (meanwhile_failed) std::rethrow_exception(meanwhile_failed);
+    return out;
 }
-
-}  // namespace
 
 const char* isolatedStatusName(IsolatedStatus status) {
     switch (status) {
@@ -472,71 +719,8 @@ const char* isolatedStatusName(IsolatedStatus status) {
 IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_dir, Backend backend,
                                  const IsolationLimits& limits, const RenderOptions& options,
                                  const std::function<void()>& while_rendering) {
-    IsolatedRender out;
-    // An anonymous file: the parent keeps it open, the child writes into it, and it is gone
-    // with the last descriptor however either process ends.
-    const int result_fd = memfd_create("shaderlab-render", MFD_CLOEXEC);
-    if (result_fd < 0) {
-        out.status = IsolatedStatus::RenderError;
-        out.message = std::string("cannot create the result file: ") + std::strerror(errno);
-        return out;
-    }
-    installStopHandlers();
-    const auto t0 = std::chrono::steady_clock::now();
-    std::fflush(nullptr);  // buffered output would otherwise be written twice
-    // An inherited SIG_IGN for SIGCHLD would make the kernel reap the child itself and waitpid
-    // fail; the default disposition is restored around the render.
-    struct sigaction dfl {
-    }, old_chld{};
-    dfl.sa_handler = SIG_DFL;
-    sigemptyset(&dfl.sa_mask);
-    sigaction(SIGCHLD, &dfl, &old_chld);
-    int progress_pipe[2] = {-1, -1};
-    if (pipe2(progress_pipe, O_CLOEXEC) != 0) progress_pipe[0] = progress_pipe[1] = -1;
-    const pid_t parent_pid = getpid();
-    const pid_t pid = fork();
-    if (pid < 0) {
-        for (int fd : progress_pipe)
-            if (fd >= 0) close(fd);
-        close(result_fd);
-        sigaction(SIGCHLD, &old_chld, nullptr);
-        out.status = IsolatedStatus::RenderError;
-        out.message = std::string("fork failed: ") + std::strerror(errno);
-        return out;
-    }
-    if (pid == 0) {
-        if (progress_pipe[0] >= 0) close(progress_pipe[0]);
-        childMain(spec, shader_dir, backend, limits, options, result_fd, parent_pid, progress_pipe[1]);
-    }
-    setpgid(pid, pid);  // as the child does itself: whichever runs first
-    g_render_child = pid;
-    if (progress_pipe[1] >= 0) close(progress_pipe[1]);
-    if (progress_pipe[0] >= 0) fcntl(progress_pipe[0], F_SETFL, O_NONBLOCK);
-    // The caller's work meanwhile; should it throw, the child is still watched and reaped first.
-    std::exception_ptr meanwhile_failed;
-    try {
-        if (while_rendering) while_rendering();
-    } catch (...) {
-        meanwhile_failed = std::current_exception();
-    }
-    ChildProgress progress(progress_pipe[0], options, &out, t0);
-    ChildEnd end = watchChild(pid, limits, progress);
-    progress.drain();
-    if (progress_pipe[0] >= 0) close(progress_pipe[0]);
-    if (!end.finished) {
-        kill(-pid, SIGKILL);
-        kill(pid, SIGKILL);
-        // A child stuck in the kernel (a GPU driver) may take a while to die; it is reaped.
-        waitpid(pid, &end.wstatus, 0);
-    }
-    g_render_child = 0;
-    sigaction(SIGCHLD, &old_chld, nullptr);
-    out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (!progress.drawing) out.compile_ms = out.wall_ms;
-    judgeChild(limits, end, result_fd, &out);
-    close(result_fd);
-    if (meanwhile_failed) std::rethrow_exception(meanwhile_failed);
-    return out;
+    IsolatedRenderQueue queue({IsolatedLabJob{&spec, shader_dir, options}}, backend, limits);
+    return queue.next(while_rendering);
 }
 
 json diagnosticToJson(const Diagnostic& d) {

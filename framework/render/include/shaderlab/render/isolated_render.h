@@ -11,8 +11,10 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <vector>
 
 #include "shaderlab/gl/gl_context.h"
 #include "shaderlab/render/renderer.h"
@@ -65,5 +67,48 @@ nlohmann::json diagnosticToJson(const Diagnostic& d);
 IsolatedRender renderLabIsolated(const LabSpec& spec, const std::string& shader_dir, Backend backend,
                                  const IsolationLimits& limits, const RenderOptions& options = {},
                                  const std::function<void()>& while_rendering = {});
+
+// One lab of an IsolatedRenderQueue: the lab (which must outlive the queue), the folder of its
+// shaders and its options (`progress` is called in this process).
+struct IsolatedLabJob {
+    const LabSpec* spec = nullptr;
+    std::string shader_dir;
+    RenderOptions options;
+};
+
+// Several labs rendered by one child, one after another: one process start, one GL context and
+// one driver start for all of them instead of one each. The child hands each lab back as it
+// finishes it and goes on with the next, so the caller judges a lab while the next one is drawn.
+//
+// Each lab keeps the limits and the verdicts of a lone renderLabIsolated(). Its compile clock
+// starts when the child is done with the lab before it, its draw clock at its first scene; a lab
+// stopped by a clock is charged with it and the labs after it go to a fresh child. A lab during
+// which the child crashes, exits or outgrows the memory limit is charged only if it was the
+// child's first; otherwise it is rendered again in a fresh child (what killed the child may be
+// what an earlier lab left behind). The clocks and the memory are watched while next() waits:
+// work done between two calls delays the stop of a runaway lab by as long, and the address-space
+// limit (IsolationLimits::memory_bytes plus kAddressSpaceHeadroom) holds meanwhile.
+class IsolatedRenderQueue {
+  public:
+    IsolatedRenderQueue(std::vector<IsolatedLabJob> jobs, Backend backend, const IsolationLimits& limits);
+    ~IsolatedRenderQueue();  // stops and reaps a child still drawing
+    IsolatedRenderQueue(const IsolatedRenderQueue&) = delete;
+    IsolatedRenderQueue& operator=(const IsolatedRenderQueue&) = delete;
+
+    // Starts the child for the labs not handed back yet, unless one runs; next() does it when
+    // needed. It forks: no other thread of this process may be running.
+    void start();
+
+    // The render of the next lab, in the order of the jobs (a RenderError once all are handed
+    // back). `while_rendering` as for renderLabIsolated(), except that with more than one lab a
+    // lab may be rendered again in a fresh child after it: it must not leave a thread running.
+    IsolatedRender next(const std::function<void()>& while_rendering = {});
+
+    std::size_t handedBack() const;  // how many labs next() has returned
+
+  private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
 
 }  // namespace shaderlab

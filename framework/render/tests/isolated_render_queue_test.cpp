@@ -1,0 +1,162 @@
+// IsolatedRenderQueue: several labs rendered by one child must give what a child of their own
+// gives each (status, renderer, every pixel, the progress events), and a child that dies must
+// cost only the lab it died in, and only when that lab was the child's first.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "shaderlab/gl/gl_context.h"
+#include "shaderlab/lab/lab_spec.h"
+#include "shaderlab/render/isolated_render.h"
+
+namespace shaderlab {
+namespace {
+
+const std::string kRoot = SHADERLAB_SOURCE_DIR;
+
+Backend autoBackend() {
+    Backend b = Backend::OSMesa;
+    parseBackend("auto", &b);
+    return b;
+}
+
+LabSpec lab(const std::string& id) {
+    const LabSpecResult r = parseLabSpec(kRoot + "/labs/" + id);
+    EXPECT_TRUE(r.ok) << id;
+    return r.spec;
+}
+
+// What a render tells: "done <scene> <ms>" without its milliseconds.
+struct Recorded {
+    std::vector<std::string> events;
+};
+
+RenderOptions recording(Recorded* r) {
+    RenderOptions options;
+    options.containment_root = kRoot + "/reference_solutions";
+    options.progress = [r](const std::string& e) {
+        r->events.push_back(e.rfind("done ", 0) == 0 ? e.substr(0, e.rfind(' ')) : e);
+    };
+    return options;
+}
+
+void expectSameRender(const IsolatedRender& a, const IsolatedRender& b, const std::string& what) {
+    SCOPED_TRACE(what);
+    EXPECT_EQ(isolatedStatusName(a.status), std::string(isolatedStatusName(b.status))) << a.message;
+    EXPECT_EQ(a.renderer, b.renderer);
+    ASSERT_EQ(a.render.scenes.size(), b.render.scenes.size());
+    for (std::size_t s = 0; s < a.render.scenes.size(); ++s) {
+        const SceneRender& x = a.render.scenes[s];
+        const SceneRender& y = b.render.scenes[s];
+        EXPECT_EQ(x.scene, y.scene);
+        ASSERT_EQ(x.passes.size(), y.passes.size()) << x.scene;
+        for (std::size_t p = 0; p < x.passes.size(); ++p) {
+            EXPECT_EQ(x.passes[p].pass, y.passes[p].pass);
+            EXPECT_EQ(x.passes[p].color.width, y.passes[p].color.width);
+            EXPECT_EQ(x.passes[p].color.height, y.passes[p].color.height);
+            // Bit for bit: NaN payloads and -0 included.
+            ASSERT_EQ(x.passes[p].color.pixels.size(), y.passes[p].color.pixels.size());
+            EXPECT_EQ(0, std::memcmp(x.passes[p].color.pixels.data(), y.passes[p].color.pixels.data(),
+                                     x.passes[p].color.pixels.size() * sizeof(float)))
+                << x.scene << " " << x.passes[p].pass;
+            EXPECT_EQ(x.passes[p].coverage, y.passes[p].coverage) << x.scene << " " << x.passes[p].pass;
+        }
+    }
+}
+
+// Kills the render children this thread started (the queue's child), once.
+void killMyChildren() {
+    std::ifstream in("/proc/self/task/" + std::to_string(syscall(SYS_gettid)) + "/children");
+    for (long pid = 0; in >> pid;) kill(static_cast<pid_t>(pid), SIGKILL);
+}
+
+class Queue : public ::testing::Test {
+  protected:
+    const LabSpec phong = lab("01-phong");
+    const LabSpec aa = lab("09-procedural-antialiasing");
+    const Backend backend = autoBackend();
+    const IsolationLimits limits;
+
+    IsolatedLabJob job(const LabSpec& spec, Recorded* r) const {
+        return {&spec, kRoot + "/reference_solutions/" + spec.id, recording(r)};
+    }
+    IsolatedRender alone(const LabSpec& spec, Recorded* r) const {
+        return renderLabIsolated(spec, kRoot + "/reference_solutions/" + spec.id, backend, limits,
+                                 recording(r));
+    }
+};
+
+TEST_F(Queue, HandsBackEachLabAsAChildOfItsOwnWould) {
+    Recorded q0, q1, q2, a0, a1;
+    IsolatedRenderQueue queue({job(phong, &q0), job(aa, &q1), job(phong, &q2)}, backend, limits);
+    queue.start();
+    std::vector<IsolatedRender> got;
+    int called = 0;
+    for (int i = 0; i < 3; ++i) got.push_back(queue.next([&] { ++called; }));
+    EXPECT_EQ(called, 3);
+    EXPECT_EQ(queue.handedBack(), 3u);
+    const IsolatedRender none = queue.next();
+    EXPECT_EQ(none.status, IsolatedStatus::RenderError);
+    EXPECT_NE(none.message.find("no lab left"), std::string::npos);
+
+    const IsolatedRender phong_alone = alone(phong, &a0), aa_alone = alone(aa, &a1);
+    ASSERT_EQ(phong_alone.status, IsolatedStatus::Ok) << phong_alone.message;
+    ASSERT_FALSE(phong_alone.render.scenes.empty());
+    expectSameRender(got[0], phong_alone, "01-phong first");
+    expectSameRender(got[1], aa_alone, "09 second");
+    expectSameRender(got[2], phong_alone, "01-phong again, third");
+    // Each lab heard its own events, and only those.
+    EXPECT_EQ(q0.events, a0.events);
+    EXPECT_EQ(q1.events, a1.events);
+    EXPECT_EQ(q2.events, a0.events);
+    EXPECT_GT(got[1].wall_ms, 0.0);
+    EXPECT_LE(got[1].compile_ms, got[1].wall_ms);
+}
+
+TEST_F(Queue, AChildThatDiesInALaterLabIsStartedAgainForIt) {
+    Recorded q0, q1, a1;
+    IsolatedLabJob second = job(phong, &q1);
+    bool killed = false;
+    const auto record = second.options.progress;
+    second.options.progress = [&, record](const std::string& e) {
+        record(e);
+        if (!killed) killMyChildren();
+        killed = true;
+    };
+    IsolatedRenderQueue queue({job(aa, &q0), second}, backend, limits);
+    const IsolatedRender first = queue.next();
+    EXPECT_EQ(first.status, IsolatedStatus::Ok) << first.message;
+    const IsolatedRender again = queue.next();
+    ASSERT_TRUE(killed);
+    // Not charged: rendered again in a child of its own, from its first event on.
+    const IsolatedRender phong_alone = alone(phong, &a1);
+    expectSameRender(again, phong_alone, "01-phong after its child was killed");
+    ASSERT_FALSE(a1.events.empty());
+    ASSERT_GT(q1.events.size(), a1.events.size());
+    EXPECT_EQ(q1.events[0], a1.events[0]);
+    EXPECT_EQ(
+        std::vector<std::string>(q1.events.end() - static_cast<long>(a1.events.size()), q1.events.end()),
+        a1.events);
+}
+
+TEST_F(Queue, AChildThatDiesInItsFirstLabChargesThatLabAndTheNextGetsAFreshOne) {
+    Recorded q0, q1, a1;
+    IsolatedLabJob first = job(phong, &q0);
+    first.options.progress = [](const std::string&) { killMyChildren(); };
+    IsolatedRenderQueue queue({first, job(aa, &q1)}, backend, limits);
+    const IsolatedRender killed = queue.next();
+    EXPECT_EQ(killed.status, IsolatedStatus::Crashed);
+    EXPECT_NE(killed.message.find("died of signal 9"), std::string::npos) << killed.message;
+    EXPECT_TRUE(killed.render.scenes.empty());
+    const IsolatedRender next = queue.next();
+    expectSameRender(next, alone(aa, &a1), "09 after the first lab's child was killed");
+    EXPECT_EQ(q1.events, a1.events);
+}
+
+}  // namespace
+}  // namespace shaderlab
