@@ -861,8 +861,10 @@ def cached_sections(res):
              "student file, so no two lab folders are alike and every lab of every submission is graded. *Mixed*: "
              "`scripts/make-batch-corpus.sh OUT %d` (half exact copies, which are graded once and reused; wrong, "
              "hostile and unique work). Lab gradings are counted as summary.json reports them (the labs of a "
-             "submission refused whole, such as a broken zip, are not); *worker runs* are the labs actually "
-             "graded. Target: at least %.0f distinct lab gradings per minute.\n" %
+             "submission refused whole, such as a broken zip, are not); *worker runs* are the worker processes the "
+             "batch started (a worker grades the labs of one submission that are left to grade, up to its share "
+             "of what is left, with one render child drawing them all; before that change, one worker per lab "
+             "graded). Target: at least %.0f distinct lab gradings per minute.\n" %
              (c.get("cores", 0), b["count"], b.get("mixed_count", b["count"]), BATCH_TARGET))
     L.append("| corpus | lab gradings | passed | worker runs | wall | per minute | %s: lab gradings | wall | per minute |"
              % bname)

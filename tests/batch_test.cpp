@@ -211,6 +211,66 @@ TEST(BatchCli, AWorkerThatDiesIsNamedAndRetried) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir / "victim"), fs::directory_iterator()), 1);
 }
 
+// `j` without the times it holds (every "..._ms"), which differ from run to run.
+json withoutTimes(const json& j) {
+    if (j.is_array()) {
+        json out = json::array();
+        for (const json& v : j) out.push_back(withoutTimes(v));
+        return out;
+    }
+    if (!j.is_object()) return j;
+    json out = json::object();
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        const std::string& key = it.key();
+        if (key.size() < 3 || key.compare(key.size() - 3, 3, "_ms") != 0) out[key] = withoutTimes(it.value());
+    }
+    return out;
+}
+
+// The labs of one submission go to one worker, whose one render child draws them all; each lab
+// lands in its own folder holding that lab alone, and the report says what a worker per lab says.
+TEST(BatchCli, OneWorkerGradesTheLabsOfASubmissionAsAWorkerEachWould) {
+    const fs::path dir = scratch("worker_groups");
+    const std::vector<std::string> labs = {"01-phong", "09-procedural-antialiasing", "08-gooch"};
+    for (const std::string& lab : labs) {
+        fs::create_directories(dir / "subs" / "alice" / lab);
+        fs::copy(kSource / "reference_solutions" / lab, dir / "subs" / "alice" / lab,
+                 fs::copy_options::recursive);
+    }
+    std::string flags = "--no-reference --timeout 20 --jobs 1";
+    for (const std::string& lab : labs) flags += " --lab " + lab;
+    const CliRun together =
+        runCli("batch '" + (dir / "subs").string() + "' --out '" + (dir / "out").string() + "' " + flags);
+    ASSERT_EQ(together.exit_code, 0) << together.output;
+    EXPECT_NE(together.output.find(", 1 worker runs,"), std::string::npos) << together.output;
+    const json report = json::parse(readFile(dir / "out" / "alice" / "report.json"), nullptr, false);
+    ASSERT_TRUE(report.is_object()) << together.output;
+    ASSERT_EQ(report["labs"].size(), labs.size());
+    // Each landed result holds its own lab, with its pictures.
+    std::size_t landed = 0;
+    for (const fs::directory_entry& e :
+         fs::recursive_directory_iterator(dir / "out" / ".shaderlab" / "labs")) {
+        if (e.path().filename() != "report.json") continue;
+        const json one = json::parse(readFile(e.path()), nullptr, false);
+        ASSERT_EQ(one["labs"].size(), 1u) << e.path();
+        const std::string lab = one["labs"][0]["id"];
+        EXPECT_EQ(one["score"], one["labs"][0]["score"]);
+        EXPECT_TRUE(fs::is_directory(e.path().parent_path() / lab)) << e.path();
+        ++landed;
+    }
+    EXPECT_EQ(landed, labs.size());
+    // A batch per lab (a worker and a render child each) says the same of every lab.
+    for (std::size_t i = 0; i < labs.size(); ++i) {
+        const fs::path out = dir / ("alone-" + labs[i]);
+        const CliRun alone = runCli("batch '" + (dir / "subs").string() + "' --out '" + out.string() +
+                                    "' --no-reference --timeout 20 --lab " + labs[i]);
+        ASSERT_EQ(alone.exit_code, 0) << alone.output;
+        EXPECT_NE(alone.output.find(", 1 worker runs,"), std::string::npos) << alone.output;
+        const json a = json::parse(readFile(out / "alice" / "report.json"), nullptr, false)["labs"][0];
+        EXPECT_TRUE(withoutTimes(a) == withoutTimes(report["labs"][i])) << labs[i];
+    }
+}
+
 // A batch killed with SIGKILL half-way leaves no process; run again it finishes what was missing
 // and ends with the summary of a run never interrupted. Two shards merged give it too.
 TEST(BatchCli, InterruptedResumedAndShardedRunsAgree) {

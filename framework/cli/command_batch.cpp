@@ -1,11 +1,11 @@
 // `shaderlab batch` (grade every submission of a folder), its worker, and `shaderlab merge`.
 //
 // The batch process never renders and never holds a GL context. It unpacks and hashes the
-// submissions, then runs one worker process (`shaderlab batch-worker`, this same program) per
-// lab to grade, at most --jobs at a time. Each worker is its own process group, dies with the
-// batch (PR_SET_PDEATHSIG) and renders in a child of its own (renderLabIsolated) with the time
-// and memory limits. What a worker made lands in the results folder under .shaderlab/, or in the
-// cache given with --cache, with one rename, keyed by a hash of everything it depends on, so that:
+// submissions, then runs worker processes (`shaderlab batch-worker`, this same program), at most
+// --jobs at a time, each grading labs of one submission. Each worker is its own process group,
+// dies with the batch (PR_SET_PDEATHSIG) and renders in a child of its own (IsolatedRenderQueue)
+// with the time and memory limits. What a worker made lands in the results folder under .shaderlab/, or in
+// the cache given with --cache, with one rename, keyed by a hash of everything it depends on, so that:
 //   - the reference solution of a lab is rendered once, then taken from the cache;
 //   - a lab folder that several students submitted unchanged (the starter code) is graded once,
 //     in the whole class when its shards (--shard K/N) share a cache;

@@ -390,6 +390,8 @@ CLI::App* addBatchWorker(CLI::App& app, BatchWorkerArgs* args) {
     cmd->add_option("--timeout", args->timeout_s);
     cmd->add_option("--compile-timeout", args->compile_timeout_s);
     cmd->add_option("--memory", args->memory);
+    cmd->add_option("--also", args->also,
+                    "more labs of the submission: lab, out folder, goldens (three each)");
     return cmd;
 }
 

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <set>
 
 #include "shaderlab/batch/batch.h"
 #include "shaderlab/batch/plan.h"
@@ -83,11 +84,13 @@ void printFigures(const BatchSettings& settings, const Plan& plan, Clock::time_p
         graded += sub.skipped ? 0 : 1;
         reused += sub.skipped ? 1 : 0;
     }
-    std::size_t ran = 0, cached = 0;
+    std::size_t cached = 0;
+    std::set<pid_t> workers;  // a worker may have done several jobs
     for (const Job& job : plan.jobs) {
-        ran += job.pid > 0 ? 1 : 0;
+        if (job.pid > 0) workers.insert(job.pid);
         cached += job.pid <= 0 && job.ok && job.kind == Job::Grade ? 1 : 0;
     }
+    const std::size_t ran = workers.size();
     const double wall = std::chrono::duration<double>(Clock::now() - started).count();
     rusage self{}, children{};
     getrusage(RUSAGE_SELF, &self);

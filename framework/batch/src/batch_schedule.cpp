@@ -52,9 +52,11 @@ class Pool {
                 continue;
             }
             if (pid < 0 && errno == ECHILD && !anyDeferred()) break;
-            for (auto& [p, j] : running_) {
-                if (std::chrono::duration<double>(Clock::now() - jobs_[j].started).count() >
-                    jobs_[j].watchdog_s)
+            for (auto& [p, group] : running_) {
+                double watchdog_s = 0.0;  // a worker of several jobs has the time of them all
+                for (std::size_t j : group) watchdog_s += jobs_[j].watchdog_s;
+                if (std::chrono::duration<double>(Clock::now() - jobs_[group.front()].started).count() >
+                    watchdog_s)
                     kill(-p, SIGKILL);  // reaped above as a failed job
             }
             if (hooks_.tick) hooks_.tick();
@@ -126,28 +128,74 @@ class Pool {
         }
     }
 
-    void start(std::size_t pick) {
-        Job& job = jobs_[pick];
-        // A grading job of a lab whose reference failed goes against the goldens. Its result is
-        // kept apart, so that a later run with the reference grades it again.
-        if (job.kind == Job::Grade)
-            for (const LabPlan& lab : labs_) {
-                auto g = std::find(job.argv.begin(), job.argv.end(), "--goldens");
-                if (lab.id != job.lab || !lab.goldens_root.empty() || g == job.argv.end()) continue;
-                job.argv.erase(g, g + 2);
-                job.final_dir += "-goldens";
-                *(std::find(job.argv.begin(), job.argv.end(), "--out") + 1) = job.final_dir;
-            }
-        if (!claim(job)) return;
+    // A grading job of a lab whose reference failed goes against the goldens. Its result is
+    // kept apart, so that a later run with the reference grades it again.
+    void useGoldensIfNeeded(Job& job) {
+        if (job.kind != Job::Grade) return;
+        for (const LabPlan& lab : labs_) {
+            auto g = std::find(job.argv.begin(), job.argv.end(), "--goldens");
+            if (lab.id != job.lab || !lab.goldens_root.empty() || g == job.argv.end()) continue;
+            job.argv.erase(g, g + 2);
+            job.final_dir += "-goldens";
+            *(std::find(job.argv.begin(), job.argv.end(), "--out") + 1) = job.final_dir;
+        }
+    }
+
+    static std::string argument(const Job& job, const char* flag) {
+        const auto it = std::find(job.argv.begin(), job.argv.end(), flag);
+        return it != job.argv.end() && it + 1 != job.argv.end() ? *(it + 1) : std::string();
+    }
+
+    // Claims the job and tells whether it is still to be run: false when another batch holds it
+    // (tried later) or made it since the plan (done).
+    bool take(std::size_t j) {
+        Job& job = jobs_[j];
+        useGoldensIfNeeded(job);
+        if (!claim(job)) return false;
         if (landed(job)) {  // another batch sharing the cache made it since the plan
-            complete(pick, true, "");
-            return;
+            complete(j, true, "");
+            return false;
+        }
+        return true;
+    }
+
+    // The grading jobs of the same submission that one worker takes with `pick`: their labs are
+    // drawn by one render child, which saves a process, a GL context and a driver start per lab.
+    // At most a share of what is left to start per worker, so that the workers stay busy.
+    std::vector<std::size_t> groupOf(std::size_t pick) {
+        std::vector<std::size_t> group = {pick};
+        const Job& first = jobs_[pick];
+        if (first.kind != Job::Grade) return group;
+        const std::string submission = argument(first, "--submission");
+        std::size_t left = 0;
+        for (const Job& job : jobs_) left += job.kind == Job::Grade && !job.done && job.pid <= 0;
+        const std::size_t most =
+            std::max<std::size_t>(1, left / static_cast<std::size_t>(settings_.jobs_max));
+        for (std::size_t j = pick + 1; j < jobs_.size() && group.size() < most; ++j) {
+            const Job& job = jobs_[j];
+            if (job.kind != Job::Grade || !startable(job) || argument(job, "--submission") != submission)
+                continue;
+            if (take(j)) group.push_back(j);
+        }
+        return group;
+    }
+
+    void start(std::size_t pick) {
+        if (!take(pick)) return;
+        const std::vector<std::size_t> group = groupOf(pick);
+        Job& job = jobs_[pick];
+        std::vector<std::string> argv = job.argv;
+        for (std::size_t k = 1; k < group.size(); ++k) {
+            const Job& more = jobs_[group[k]];
+            for (const std::string& value : {more.lab, more.final_dir, argument(more, "--goldens")}) {
+                argv.push_back("--also");
+                argv.push_back(value);
+            }
         }
         const std::string log = (folder_.state / "logs" /
                                  ((job.kind == Job::Reference ? "reference-" : "grade-") + job.lab + "-" +
                                   fs::path(job.final_dir).filename().string() + ".log"))
                                     .string();
-        job.log = log;
         // The render child below the worker watches its resident memory against `memory` and
         // caps its address space at 4 GiB more (isolated_render.cpp); the worker gets the same cap.
         // Not under AddressSanitizer, whose shadow memory reserves terabytes of address space
@@ -157,14 +205,17 @@ class Pool {
         // (an ASan worker under such a cap dies at its start, which that test wants).
         std::size_t worker_as = SHADERLAB_ASAN ? 0 : settings_.memory + (std::size_t(4) << 30);
         if (const char* env = std::getenv("SHADERLAB_WORKER_ADDRESS_SPACE")) parseMemory(env, &worker_as, 1);
-        const Spawned s = spawnWorker(job.argv, log, worker_as);
+        const Spawned s = spawnWorker(argv, log, worker_as);
+        for (std::size_t j : group) jobs_[j].log = log;
         if (s.pid < 0) {
-            complete(pick, false, s.error);
+            for (std::size_t j : group) complete(j, false, s.error);
             return;
         }
-        job.pid = s.pid;
-        job.started = Clock::now();
-        running_[s.pid] = pick;
+        for (std::size_t j : group) {
+            jobs_[j].pid = s.pid;
+            jobs_[j].started = Clock::now();
+        }
+        running_[s.pid] = group;
         while (next_ < jobs_.size() && (jobs_[next_].done || jobs_[next_].pid > 0)) ++next_;
     }
 
@@ -201,15 +252,30 @@ class Pool {
         return false;
     }
 
-    // The worker `pid` ended: its job is done when it exited 0 and its result landed.
+    // The worker `pid` ended: each of its jobs is done when its result landed. A worker that
+    // failed fails the first job it had not landed, the one it was doing; the jobs after that
+    // one go back to the pool, to be run again.
     void reaped(pid_t pid, int wstatus) {
-        const std::size_t j = running_[pid];
+        const std::vector<std::size_t> group = running_[pid];
         running_.erase(pid);
         forgetWorker(pid);
         kill(-pid, SIGKILL);  // anything the worker left in its group
-        const Job& job = jobs_[j];
-        const bool ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0 && landed(job);
-        complete(j, ok, ok ? std::string() : describeExit(wstatus) + lastLogLine(job.log));
+        const bool exited_ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0;
+        bool failed_one = false;
+        for (std::size_t j : group) {
+            Job& job = jobs_[j];
+            if (landed(job)) {
+                complete(j, true, "");
+            } else if (!failed_one || exited_ok) {
+                failed_one = true;
+                complete(j, false, describeExit(wstatus) + lastLogLine(job.log));
+            } else {
+                job.pid = -1;
+                if (job.claim_fd >= 0) close(job.claim_fd);
+                job.claim_fd = -1;
+                next_ = std::min(next_, j);
+            }
+        }
     }
 
     std::vector<LabPlan>& labs_;
@@ -218,7 +284,7 @@ class Pool {
     const ResultsFolder& folder_;
     const BatchSettings& settings_;
     const ScheduleHooks& hooks_;
-    std::map<pid_t, std::size_t> running_;
+    std::map<pid_t, std::vector<std::size_t>> running_;  // a worker's jobs, in the order it does them
     std::size_t next_ = 0;
 };
 

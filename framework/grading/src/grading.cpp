@@ -610,6 +610,11 @@ void scoreGoals(const LabSpec& spec,
     lab->goals = std::move(goals);
 }
 
+const std::string& goldensRoot(const GradeOptions& options, const std::string& id) {
+    const auto own = options.lab_goldens_roots.find(id);
+    return own != options.lab_goldens_roots.end() ? own->second : options.goldens_root;
+}
+
 // Grades lab `id`, parsed as `parsed`. `queue`: the child rendering the submission's labs, whose
 // next lab is this one; null: a child of its own.
 grader::ReportLab gradeLab(const std::string& submission_dir, const std::string& id,
@@ -650,7 +655,7 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     // have to start again, right away on this thread. Read without knowing which scenes the
     // render could not load: a missing golden of such a scene reads again below, skipping it.
     std::string stored_dir =
-        options.goldens_root.empty() ? spec.lab_dir : (fs::path(options.goldens_root) / id).string();
+        goldensRoot(options, id).empty() ? spec.lab_dir : (fs::path(goldensRoot(options, id)) / id).string();
     const bool stored_goldens = !grading_detail::hasReference(options.reference_root, id);
     std::string guessed_cache;
     std::future<ReferenceImages> early_goldens;

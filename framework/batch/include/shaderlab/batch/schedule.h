@@ -29,8 +29,11 @@ struct ScheduleHooks {
     std::function<void()> tick;
 };
 
-// Runs every job of `plan` that is not done yet. A job is done when its worker exits 0 and its
-// result has landed; otherwise it failed, with the reason in Job::error. A grading job of a lab
+// Runs every job of `plan` that is not done yet. A worker takes a grading job with the other
+// grading jobs of its submission that can start (at most its share of the grading jobs left),
+// drawn by one render child. A job is done when its result has landed; a job whose worker failed
+// before it landed failed, with the reason in Job::error, if the worker was doing it, and goes
+// back to the pool if the worker had not come to it. A grading job of a lab
 // whose reference failed goes against the goldens, into a folder of its own.
 void runJobs(Plan* plan, const ResultsFolder& folder, const BatchSettings& settings,
              const ScheduleHooks& hooks);

@@ -6,8 +6,9 @@
 // GL context: what the driver is, it asks a child (probeRenderer).
 //
 // The worker's side: runWorkerTask() does one job of the plan (plan.h), a reference render or one
-// lab graded (renderLabIsolated, with the time and memory limits, in a child of its own), and
-// lands its result in the job's folder with one rename. POSIX only.
+// lab graded (renderLabIsolated, with the time and memory limits, in a child of its own), or
+// several grading jobs of one submission (their labs drawn by one render child), and lands each
+// result in its job's folder with one rename. POSIX only.
 #pragma once
 
 #include <sys/types.h>
@@ -61,6 +62,10 @@ struct WorkerTask {
     double compile_timeout_s = 30.0;
     std::string memory = "2G";
     std::string tool_version;  // in the report
+    // More labs of the same submission, graded by the same render child after `lab` (grade
+    // mode): three strings each, the lab, its out_dir and its goldens_root (may be empty). Each
+    // lab lands in its own out_dir as soon as it is graded, as a worker of its own would leave it.
+    std::vector<std::string> also;
 };
 
 // Does `task` into `<out_dir>.tmp-<pid>`, then renames that to `out_dir` (when another batch made

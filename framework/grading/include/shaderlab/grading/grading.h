@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct GradeOptions {
     std::function<void(const std::string& lab, const std::string& event)> progress;
     // Where <lab>/golden/ and <lab>/hints/ are read from; empty: each lab's own folder.
     std::string goldens_root;
+    // A lab's own root for them, over goldens_root (a batch worker grading several labs, each
+    // against its reference-cache entry).
+    std::map<std::string, std::string> lab_goldens_roots;
     bool hints = true;  // look for a known mistake (mistake_hints.h) behind every failing scene
     // Reference renders kept between runs (shaderlab/batch/reference_cache.h). Asked, for a lab
     // whose reference solution is present, once the student's render says which renderer drew it:
