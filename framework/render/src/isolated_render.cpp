@@ -281,6 +281,8 @@ int integer(const json& object, const char* key) {
     return static_cast<int>(std::clamp<std::int64_t>(v, INT32_MIN, INT32_MAX));
 }
 
+bool readResultJson(const json& result, int fd, std::uint64_t size, IsolatedRender* out);
+
 // Parent side: read one lab's result where the child said it lies, trusting nothing about sizes.
 bool readChildResult(int fd, std::uint64_t json_offset, std::uint64_t json_size, IsolatedRender* out) {
     struct stat st {};
@@ -291,13 +293,25 @@ bool readChildResult(int fd, std::uint64_t json_offset, std::uint64_t json_size,
     if (!readAt(fd, bytes.data(), bytes.size(), json_offset)) return false;
     const json result = json::parse(bytes, nullptr, false);
     if (result.is_discarded() || !result.is_object()) return false;
+    // A value of the wrong type makes the JSON library throw: such a result is unreadable.
+    try {
+        return readResultJson(result, fd, size, out);
+    } catch (const json::exception&) {
+        return false;
+    }
+}
+
+// The rest of readChildResult(): the fields of a parsed result.json, images read from `fd`.
+bool readResultJson(const json& result, int fd, std::uint64_t size, IsolatedRender* out) {
     out->status = statusFromName(result.value("status", ""));
     out->message = text(result, "message");
     out->renderer = text(result, "renderer", 500);
     // The child's own clock (the parent may have been busy when the lab ended): for reports only.
     const double wall_ms = result.value("wall_ms", -1.0), compile_ms = result.value("compile_ms", -1.0);
-    if (std::isfinite(wall_ms) && wall_ms >= 0.0) out->wall_ms = wall_ms;
-    if (std::isfinite(compile_ms) && compile_ms >= 0.0) out->compile_ms = std::min(compile_ms, out->wall_ms);
+    if (std::isfinite(wall_ms) && wall_ms >= 0.0) {
+        out->wall_ms = wall_ms;
+        if (std::isfinite(compile_ms) && compile_ms >= 0.0) out->compile_ms = std::min(compile_ms, wall_ms);
+    }
     out->render.status = renderStatusOf(out->status);
     out->render.message = out->message;
     // A loop stopped by the loop guard (shader_program.h): as good as a timeout, said as such.
@@ -384,21 +398,28 @@ struct ChildEnd {
 
 // The status and message of a lab whose child ended or was killed before handing it back: the
 // limit that ran out, the signal it died of, or an exit without a result.
-void chargeChild(const IsolationLimits& limits, const ChildEnd& end, IsolatedRender* result) {
+// `killed` false: a later lab of a queue that went past a clock while the grader was busy, and
+// finished before the grader looked again.
+void chargeChild(const IsolationLimits& limits, const ChildEnd& end, IsolatedRender* result,
+                 bool killed = true) {
     IsolatedRender& out = *result;
     const int wstatus = end.wstatus;
     const std::string where = whereItStopped(out.last_event);
+    const std::string stopped =
+        killed ? "; the process was killed"
+               : "; it ran on while the grader was busy, and counts as stopped at the limit";
     if (out.limit == "compile_timeout") {
         out.status = IsolatedStatus::Timeout;
         out.message = "compile timeout: not ready to draw within " + seconds(limits.compile_timeout_s) +
                       " s (the compile limit)" + where +
                       " (a very large or complex shader, e.g. a huge array or a macro that doubles "
-                      "itself?); the process was killed";
+                      "itself?)" +
+                      stopped;
     } else if (out.limit == "draw_timeout") {
         out.status = IsolatedStatus::Timeout;
         out.message = "draw timeout: drawing did not finish within " + seconds(limits.timeout_s) +
-                      " s (the draw limit)" + where +
-                      " (an endless or very long loop in a shader?); the process was killed";
+                      " s (the draw limit)" + where + " (an endless or very long loop in a shader?)" +
+                      stopped;
     } else if (out.limit == "memory") {
         out.status = IsolatedStatus::Crashed;
         out.message = "memory limit: the render process used more than " +
@@ -421,6 +442,25 @@ void chargeChild(const IsolationLimits& limits, const ChildEnd& end, IsolatedRen
     }
 }
 
+// A lab after the child's first may have run while the grader was busy elsewhere, unwatched: by
+// the child's clocks it is charged as the grader would have stopped it.
+void chargeIfLate(const IsolationLimits& limits, IsolatedRender* out) {
+    const bool compile_late = out->compile_ms > limits.compile_timeout_s * 1000.0;
+    const bool draw_late = out->wall_ms - out->compile_ms > limits.timeout_s * 1000.0;
+    if (!compile_late && !draw_late) return;
+    IsolatedRender late;
+    late.limit = compile_late ? "compile_timeout" : "draw_timeout";
+    late.last_event = out->last_event;
+    late.renderer = out->renderer;
+    late.wall_ms = out->wall_ms;
+    late.compile_ms = out->compile_ms;
+    late.peak_rss_bytes = out->peak_rss_bytes;
+    ChildEnd none;
+    none.finished = true;
+    chargeChild(limits, none, &late, false);
+    *out = std::move(late);
+}
+
 }  // namespace
 
 struct IsolatedRenderQueue::State {
@@ -440,6 +480,9 @@ struct IsolatedRenderQueue::State {
     std::map<std::size_t, std::pair<std::uint64_t, std::uint64_t>> ready;  // lab -> its result.json
     std::uint64_t freed_to = 0;  // the result file below this is handed back and freed
 
+    ChildEnd ended;  // how it ended, once reaped (its files stay open until the next)
+    std::size_t children_started = 0;
+
     bool sigchld_saved = false;
     struct sigaction old_chld {};
 
@@ -450,6 +493,7 @@ struct IsolatedRenderQueue::State {
 };
 
 bool IsolatedRenderQueue::State::startChild(std::string* error) {
+    stopChild();  // the files of one that ended
     // An anonymous file: the parent keeps it open, the child writes into it, and it is gone
     // with the last descriptor however either process ends.
     result_fd = memfd_create("shaderlab-render", MFD_CLOEXEC);
@@ -495,8 +539,10 @@ bool IsolatedRenderQueue::State::startChild(std::string* error) {
     close(progress_pipe[1]);
     progress_fd = progress_pipe[0];
     fcntl(progress_fd, F_SETFL, O_NONBLOCK);
+    ++children_started;
     first = next;
     current = SIZE_MAX;
+    ended = ChildEnd{};
     drawing = false;
     lab_start = phase_start = t0;
     pending.clear();
@@ -565,11 +611,18 @@ void IsolatedRenderQueue::State::takeLines(IsolatedRender* out) {
         }
     }
     pending.erase(0, from);
-    if (pending.size() > 1000000) pending.clear();  // a line without end: not ours
+    // A line without end: not ours. (Whole lines of the labs after `next` are kept.)
+    const std::size_t last = pending.rfind('\n');
+    const std::size_t tail = last == std::string::npos ? 0 : last + 1;
+    if (pending.size() - tail > 1000000) pending.erase(tail);
 }
 
 // Waits for lab `next`: until the child hands it back, ends, or meets a limit.
 ChildEnd IsolatedRenderQueue::State::watch(IsolatedRender* out) {
+    if (pid < 0) {  // it ended while the grader was busy: what it finished is in its files
+        takeLines(out);
+        return ended;
+    }
     ChildEnd end;
     // Poll rather than block: the parent must be able to give up on a child that never ends or
     // grows too large.
@@ -580,6 +633,7 @@ ChildEnd IsolatedRenderQueue::State::watch(IsolatedRender* out) {
             end.lost = r != pid;
             forgetChild(pid);
             pid = -1;
+            ended = end;
             takeLines(out);
             return end;
         }
@@ -620,10 +674,12 @@ IsolatedRenderQueue::~IsolatedRenderQueue() {
 
 std::size_t IsolatedRenderQueue::handedBack() const { return state_->next; }
 
+std::size_t IsolatedRenderQueue::childrenStarted() const { return state_->children_started; }
+
 void IsolatedRenderQueue::start() {
     State& s = *state_;
     std::string error;
-    if (s.pid < 0 && s.next < s.jobs.size() && !s.startChild(&error)) s.stopChild();
+    if (s.pid < 0 && s.result_fd < 0 && s.next < s.jobs.size() && !s.startChild(&error)) s.stopChild();
 }
 
 IsolatedRender IsolatedRenderQueue::next(const std::function<void()>& while_rendering) {
@@ -639,7 +695,7 @@ IsolatedRender IsolatedRenderQueue::next(const std::function<void()>& while_rend
     bool meanwhile_done = !while_rendering;
     for (;;) {
         std::string error;
-        if (s.pid < 0 && !s.startChild(&error)) {
+        if (s.pid < 0 && s.result_fd < 0 && !s.startChild(&error)) {
             s.stopChild();
             out.status = IsolatedStatus::RenderError;
             out.message = out.render.message = error;
@@ -667,12 +723,13 @@ IsolatedRender IsolatedRenderQueue::next(const std::function<void()>& while_rend
                           static_cast<off_t>(s.freed_to), static_cast<off_t>(taken - s.freed_to));
                 s.freed_to = taken;
             }
-            if (s.pid < 0) s.stopChild();  // it ended: close its files
             if (!read) {
                 s.stopChild();
                 out = IsolatedRender{};
                 out.status = IsolatedStatus::Crashed;
                 out.message = "the render process handed back a result that cannot be read";
+            } else if (!first) {
+                chargeIfLate(s.limits, &out);
             }
             break;
         }

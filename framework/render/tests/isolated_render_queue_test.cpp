@@ -6,10 +6,13 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "shaderlab/base/sanitizer.h"
 #include "shaderlab/gl/gl_context.h"
 #include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/render/isolated_render.h"
@@ -91,14 +94,22 @@ class Queue : public ::testing::Test {
     }
 };
 
+// How long a test waits for a child to finish labs on its own (AddressSanitizer is much slower).
+constexpr std::chrono::seconds kBusy(SHADERLAB_ASAN ? 30 : 5);
+
 TEST_F(Queue, HandsBackEachLabAsAChildOfItsOwnWould) {
     Recorded q0, q1, q2, a0, a1;
     IsolatedRenderQueue queue({job(phong, &q0), job(aa, &q1), job(phong, &q2)}, backend, limits);
     queue.start();
     std::vector<IsolatedRender> got;
     int called = 0;
-    for (int i = 0; i < 3; ++i) got.push_back(queue.next([&] { ++called; }));
+    got.push_back(queue.next([&] { ++called; }));
+    // The grader busy elsewhere: the child finishes the other labs and ends meanwhile; what it
+    // handed back is still taken, with no second child.
+    std::this_thread::sleep_for(kBusy);
+    for (int i = 1; i < 3; ++i) got.push_back(queue.next([&] { ++called; }));
     EXPECT_EQ(called, 3);
+    EXPECT_EQ(queue.childrenStarted(), 1u);
     EXPECT_EQ(queue.handedBack(), 3u);
     const IsolatedRender none = queue.next();
     EXPECT_EQ(none.status, IsolatedStatus::RenderError);
@@ -133,6 +144,7 @@ TEST_F(Queue, AChildThatDiesInALaterLabIsStartedAgainForIt) {
     EXPECT_EQ(first.status, IsolatedStatus::Ok) << first.message;
     const IsolatedRender again = queue.next();
     ASSERT_TRUE(killed);
+    EXPECT_EQ(queue.childrenStarted(), 2u);
     // Not charged: rendered again in a child of its own, from its first event on.
     const IsolatedRender phong_alone = alone(phong, &a1);
     expectSameRender(again, phong_alone, "01-phong after its child was killed");
@@ -147,15 +159,48 @@ TEST_F(Queue, AChildThatDiesInALaterLabIsStartedAgainForIt) {
 TEST_F(Queue, AChildThatDiesInItsFirstLabChargesThatLabAndTheNextGetsAFreshOne) {
     Recorded q0, q1, a1;
     IsolatedLabJob first = job(phong, &q0);
-    first.options.progress = [](const std::string&) { killMyChildren(); };
+    // Once: were the lab rendered again, it would pass.
+    bool done = false;
+    first.options.progress = [&done](const std::string&) {
+        if (!done) killMyChildren();
+        done = true;
+    };
     IsolatedRenderQueue queue({first, job(aa, &q1)}, backend, limits);
     const IsolatedRender killed = queue.next();
     EXPECT_EQ(killed.status, IsolatedStatus::Crashed);
     EXPECT_NE(killed.message.find("died of signal 9"), std::string::npos) << killed.message;
     EXPECT_TRUE(killed.render.scenes.empty());
+    EXPECT_EQ(queue.childrenStarted(), 1u);
     const IsolatedRender next = queue.next();
     expectSameRender(next, alone(aa, &a1), "09 after the first lab's child was killed");
     EXPECT_EQ(q1.events, a1.events);
+}
+
+// A later lab drawn while the grader is busy elsewhere is unwatched; if it went past its draw
+// clock it is charged as a child of its own would have been stopped, by the child's own clock.
+TEST_F(Queue, ALaterLabThatRanPastItsClockUnwatchedCountsAsStopped) {
+    const LabSpec post = lab("05-post-processing");
+    IsolationLimits tight;
+    tight.timeout_s = 0.05;  // far less than the lab's drawing takes
+    Recorded r0, r1;
+    const IsolatedLabJob missing{&phong, kRoot + "/no-such-folder/01-phong", recording(&r0)};
+    IsolatedRenderQueue queue({missing, job(post, &r1)}, backend, tight);
+    const IsolatedRender none = queue.next();
+    EXPECT_EQ(none.status, IsolatedStatus::Missing) << none.message;
+    std::this_thread::sleep_for(kBusy);
+    const IsolatedRender late = queue.next();
+    EXPECT_EQ(late.status, IsolatedStatus::Timeout) << late.message;
+    EXPECT_EQ(late.limit, "draw_timeout");
+    EXPECT_NE(late.message.find("counts as stopped at the limit"), std::string::npos) << late.message;
+    EXPECT_TRUE(late.render.scenes.empty());
+    EXPECT_EQ(queue.childrenStarted(), 1u);
+    // Watched, the same lab is stopped by the grader itself.
+    Recorded r2;
+    const IsolatedRender watched =
+        renderLabIsolated(post, kRoot + "/reference_solutions/" + post.id, backend, tight, recording(&r2));
+    EXPECT_EQ(watched.status, IsolatedStatus::Timeout) << watched.message;
+    EXPECT_EQ(watched.limit, "draw_timeout");
+    EXPECT_NE(watched.message.find("the process was killed"), std::string::npos) << watched.message;
 }
 
 }  // namespace

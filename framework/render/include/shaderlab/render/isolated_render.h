@@ -85,9 +85,11 @@ struct IsolatedLabJob {
 // stopped by a clock is charged with it and the labs after it go to a fresh child. A lab during
 // which the child crashes, exits or outgrows the memory limit is charged only if it was the
 // child's first; otherwise it is rendered again in a fresh child (what killed the child may be
-// what an earlier lab left behind). The clocks and the memory are watched while next() waits:
-// work done between two calls delays the stop of a runaway lab by as long, and the address-space
-// limit (IsolationLimits::memory_bytes plus kAddressSpaceHeadroom) holds meanwhile.
+// what an earlier lab left behind), so its progress events may be told twice. The clocks and the
+// memory are watched while next() waits: work done between two calls delays the stop of a
+// runaway lab by as long (the address-space limit, IsolationLimits::memory_bytes plus
+// kAddressSpaceHeadroom, holds meanwhile), and a lab that finished meanwhile past a clock, by the
+// child's own clock, is charged as if it had been stopped there.
 class IsolatedRenderQueue {
   public:
     IsolatedRenderQueue(std::vector<IsolatedLabJob> jobs, Backend backend, const IsolationLimits& limits);
@@ -104,7 +106,8 @@ class IsolatedRenderQueue {
     // lab may be rendered again in a fresh child after it: it must not leave a thread running.
     IsolatedRender next(const std::function<void()>& while_rendering = {});
 
-    std::size_t handedBack() const;  // how many labs next() has returned
+    std::size_t handedBack() const;       // how many labs next() has returned
+    std::size_t childrenStarted() const;  // how many child processes it has started
 
   private:
     struct State;
