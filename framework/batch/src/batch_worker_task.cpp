@@ -38,28 +38,6 @@ int renderReference(const WorkerTask& task, Backend backend, const fs::path& tmp
     return 0;
 }
 
-// The lab of the submission graded, its report.json written. Exit code.
-int gradeLab(const WorkerTask& task, Backend backend, const fs::path& tmp, std::vector<std::string>* errors) {
-    GradeOptions options;
-    options.backend = backend;
-    options.labs_root = task.labs_root;
-    options.labs = {task.lab};
-    options.out_dir = tmp.string();
-    options.goldens_root = task.goldens_root;
-    options.limits.timeout_s = task.timeout_s;
-    options.limits.compile_timeout_s = task.compile_timeout_s;
-    std::size_t memory = 0;
-    if (parseMemory(task.memory, &memory)) options.limits.memory_bytes = memory;
-    grader::Report report = gradeSubmission(task.submission, options);
-    report.tool_version = task.tool_version;
-    std::string err;
-    if (!writeFileAtomically((tmp / "report.json").string(), grader::reportToJson(report), &err)) {
-        errors->push_back(err);
-        return 2;
-    }
-    return 0;
-}
-
 // `<final_dir>.tmp-<host>-<pid>`, emptied and made: where a result is put together before its
 // rename. Named by host and process: batches on several machines may share the cache.
 fs::path temporaryFor(const std::string& final_dir, std::vector<std::string>* errors) {
@@ -87,9 +65,9 @@ int land(const fs::path& tmp, const std::string& final_dir) {
     return 0;
 }
 
-// The labs of task.lab and task.also graded by one gradeSubmission (one render child draws
-// them all, IsolatedRenderQueue); as each is graded, its pictures and a report.json holding that
-// lab alone land in its own folder, as a worker of its own would leave them. Exit code.
+// The lab of the task, and those of task.also, graded by one gradeSubmission (one render child
+// draws them all, IsolatedRenderQueue); as each is graded, its pictures and a report.json holding
+// that lab alone land in its own folder, as a worker of its own would leave them. Exit code.
 int gradeLabs(const WorkerTask& task, Backend backend, std::vector<std::string>* errors) {
     struct Place {
         std::string lab, final_dir;
@@ -154,17 +132,16 @@ int gradeLabs(const WorkerTask& task, Backend backend, std::vector<std::string>*
 int runWorkerTask(const WorkerTask& task, std::vector<std::string>* errors) {
     Backend backend{};
     parseBackend(task.backend, &backend);
-    if (!task.also.empty()) {
-        if (task.mode != "grade" || task.also.size() % 3 != 0) {
-            errors->push_back("--also takes three values each (lab, out folder, goldens), in grade mode");
+    if (task.mode == "grade") {
+        if (task.also.size() % 3 != 0) {
+            errors->push_back("--also takes three values each: lab, out folder, goldens");
             return 2;
         }
         return gradeLabs(task, backend, errors);
     }
     const fs::path tmp = temporaryFor(task.out_dir, errors);
     if (tmp.empty()) return 2;
-    const int code = task.mode == "reference" ? renderReference(task, backend, tmp, errors)
-                                              : gradeLab(task, backend, tmp, errors);
+    const int code = renderReference(task, backend, tmp, errors);
     if (code != 0) return code;
     return land(tmp, task.out_dir);
 }
