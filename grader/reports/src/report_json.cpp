@@ -180,14 +180,19 @@ std::string reportToJson(const Report& report) {
                               {"render_ms", number(s.render_ms)}});
         }
         json goals = json::array();
-        for (const ReportGoal& g : lab.goals)
-            goals.push_back({{"id", g.id},
-                             {"title", g.title},
-                             {"points", number(g.points)},
-                             {"met", g.met},
-                             {"failing", g.failing},
-                             {"not_met_because", g.not_met_because},
-                             {"scenes", g.scenes}});
+        for (const ReportGoal& g : lab.goals) {
+            json goal = {{"id", g.id},
+                         {"title", g.title},
+                         {"points", number(g.points)},
+                         {"met", g.met},
+                         {"failing", g.failing},
+                         {"not_met_because", g.not_met_because},
+                         {"scenes", g.scenes}};
+            if (!g.judged.empty()) goal["judged"] = g.judged;
+            if (!g.judged_note.empty()) goal["judged_note"] = g.judged_note;
+            if (!g.whole_failing.empty()) goal["whole_failing"] = g.whole_failing;
+            goals.push_back(std::move(goal));
+        }
         labs.push_back({{"id", lab.id},
                         {"title", lab.title},
                         {"folder", lab.folder},
@@ -260,6 +265,9 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
             goal.failing = g.value("failing", std::vector<std::string>{});
             goal.scenes = g.value("scenes", std::vector<std::string>{});
             goal.not_met_because = g.value("not_met_because", std::vector<std::string>{});
+            goal.judged = g.value("judged", "");
+            goal.judged_note = g.value("judged_note", "");
+            goal.whole_failing = g.value("whole_failing", std::vector<std::string>{});
             lab.goals.push_back(std::move(goal));
         }
         for (const json& s : l.value("scenes", json::array())) {

@@ -119,6 +119,18 @@ struct ReportGoal {
     // The goals it rests on (lab.json "depends_on") that are not met: then it is not met because
     // of them, whatever its own checks say, and the report says so instead of a verdict of its own.
     std::vector<std::string> not_met_because;
+    // How the verdict was reached (docs/grading.md, "Goal isolation"); empty in older reports:
+    //   "alone": the student's whole shaders failed it, so it was judged on renders in which only
+    //            the student's own work for it (its functions, files or passes) is theirs, the
+    //            rest the reference's (error carried forward);
+    //   "whole": judged on the student's whole shaders: they passed it, or its work could not be
+    //            taken alone (judged_note says why);
+    //   "combination": a goal about the parts put together, always judged on the whole shaders.
+    std::string judged;
+    std::string judged_note;  // why a goal with work of its own was not judged alone; else empty
+    // Judged alone: the checks that failed on the whole shaders ("<scene>/<pass>"), which may
+    // differ from `failing` (the isolated renders') because of another goal's mistake.
+    std::vector<std::string> whole_failing;
 };
 
 struct ReportLab {
