@@ -1,0 +1,196 @@
+// A reference file with a student's functions swapped in.
+#include "shaderlab/glsl/glsl_compose.h"
+
+#include <gtest/gtest.h>
+
+#include "shaderlab/glsl/glsl_outline.h"
+
+namespace shaderlab::glsl {
+namespace {
+
+const char* const kReference = R"(#version 330 core
+in vec3 v_normal;
+uniform float u_gain;
+out vec4 o_color;
+const float kScale = 1.0;
+
+float clamp01(float x) { return clamp(x, 0.0, 1.0); }
+
+float diffuse(vec3 n, vec3 l) {
+    return clamp01(dot(n, l)) * kScale;
+}
+
+float highlight(vec3 n, vec3 l) {
+    return pow(clamp01(dot(reflect(-l, n), vec3(0.0, 0.0, 1.0))), 8.0);
+}
+
+void main() {
+    vec3 n = normalize(v_normal);
+    vec3 l = normalize(vec3(1.0));
+    o_color = vec4(vec3(diffuse(n, l) + highlight(n, l)) * u_gain, 1.0);
+}
+)";
+
+const char* const kStarter = R"(#version 330 core
+in vec3 v_normal;
+uniform float u_gain;
+out vec4 o_color;
+
+float diffuse(vec3 n, vec3 l) {
+    return 0.0;  // TODO(student)
+}
+
+float highlight(vec3 n, vec3 l) {
+    return 0.0;  // TODO(student)
+}
+
+void main() {
+    vec3 n = normalize(v_normal);
+    vec3 l = normalize(vec3(1.0));
+    o_color = vec4(vec3(diffuse(n, l) + highlight(n, l)) * u_gain, 1.0);
+}
+)";
+
+Composed compose(const std::string& student, std::vector<std::string> take,
+                 std::vector<std::string> keep = {}) {
+    ComposeInput in;
+    in.file = "lit.frag";
+    in.reference = kReference;
+    in.student = student;
+    in.starter = kStarter;
+    in.take = std::move(take);
+    in.keep = std::move(keep);
+    return composeFunctions(in);
+}
+
+// The body of function `name` in `text`, canonical.
+std::string function(const std::string& text, const std::string& name) {
+    const Outline o = outlineGlsl(text);
+    for (const Declaration* d : declarationsNamed(o, name))
+        if (d->kind == DeclKind::Function) return canonicalText(text, o, *d);
+    return "(none)";
+}
+
+TEST(GlslCompose, TakesOnlyTheNamedFunction) {
+    // The student's diffuse is wrong (no clamp) and so is their highlight; only diffuse is taken.
+    const std::string student = R"(#version 330 core
+in vec3 v_normal;
+uniform float u_gain;
+out vec4 o_color;
+float diffuse(vec3 n, vec3 l) { return dot(n, l); }
+float highlight(vec3 n, vec3 l) { return 1.0; }
+void main() { o_color = vec4(diffuse(normalize(v_normal), vec3(1.0)) + highlight(v_normal, v_normal)); }
+)";
+    const Composed c = compose(student, {"diffuse"});
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(function(c.text, "diffuse"), "float diffuse ( vec3 n , vec3 l ) { return dot ( n , l ) ; }");
+    EXPECT_EQ(function(c.text, "highlight"), function(kReference, "highlight"));
+    EXPECT_EQ(function(c.text, "main"), function(kReference, "main"));
+    EXPECT_TRUE(c.imported.empty());
+}
+
+TEST(GlslCompose, HelpersComeAlongRenamedWhereTheyClash) {
+    // The student's own clamp01 differs from the reference's (it does not clamp at 1), and a
+    // helper the reference does not have comes along under its own name.
+    const std::string student = R"(#version 330 core
+in vec3 v_normal;
+uniform float u_gain;
+out vec4 o_color;
+const float kScale = 0.5;
+float clamp01(float x) { return max(x, 0.0); }
+float twice(float x) { return 2.0 * x; }
+float diffuse(vec3 n, vec3 l) { return twice(clamp01(dot(n, l))) * kScale; }
+float highlight(vec3 n, vec3 l) { return clamp01(1.0); }
+void main() { o_color = vec4(diffuse(v_normal, v_normal) * u_gain); }
+)";
+    const Composed c = compose(student, {"diffuse"});
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(c.imported, (std::vector<std::string>{"kScale_student", "clamp01_student", "twice"}));
+    EXPECT_EQ(function(c.text, "diffuse"),
+              "float diffuse ( vec3 n , vec3 l ) { return twice ( clamp01_student ( dot ( n , l ) ) ) * "
+              "kScale_student ; }");
+    // The reference's own helper is untouched, and its highlight still calls it.
+    EXPECT_EQ(function(c.text, "clamp01"), function(kReference, "clamp01"));
+    EXPECT_EQ(function(c.text, "highlight"), function(kReference, "highlight"));
+    EXPECT_NE(c.text.find("const float kScale_student = 0.5;"), std::string::npos) << c.text;
+    // Imports stand before the first function taken, after the reference's globals.
+    EXPECT_LT(c.text.find("kScale_student = 0.5"), c.text.find("float diffuse"));
+}
+
+TEST(GlslCompose, KeptFunctionsStayTheReferences) {
+    // main is the work (the glue); the student's diffuse is wrong but is another goal's work.
+    const std::string student = R"(#version 330 core
+in vec3 v_normal;
+uniform float u_gain;
+out vec4 o_color;
+float diffuse(vec3 n, vec3 l) { return 0.25; }
+float highlight(vec3 n, vec3 l) { return 0.0; }
+void main() {
+    vec3 n = normalize(v_normal);
+    o_color = vec4(vec3(diffuse(n, n) + highlight(n, n)), 1.0);  // forgot u_gain
+}
+)";
+    const Composed c = compose(student, {"main"}, {"diffuse", "highlight"});
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(function(c.text, "diffuse"), function(kReference, "diffuse"));
+    EXPECT_EQ(function(c.text, "main"), function(student, "main"));
+}
+
+TEST(GlslCompose, PrototypesForFunctionsDefinedLater) {
+    // The student's diffuse calls highlight, which the reference defines after diffuse.
+    const std::string student = std::string(kStarter).replace(
+        std::string(kStarter).find("return 0.0;  // TODO(student)"), 29, "return highlight(n, l);");
+    const Composed c = compose(student, {"diffuse"}, {"highlight"});
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_LT(c.text.find("float highlight(vec3 n, vec3 l);"), c.text.find("float diffuse("));
+}
+
+TEST(GlslCompose, RefusesWithAReason) {
+    // Missing, another signature, still the starter's, a global main sets, #if blocks.
+    const std::string missing = "void main() {}";
+    Composed c = compose(missing, {"diffuse"});
+    EXPECT_FALSE(c.ok);
+    EXPECT_EQ(c.note, "lit.frag has no function `float diffuse(vec3 n, vec3 l)`");
+
+    c = compose("float diffuse(vec3 n) { return 1.0; } void main() {}", {"diffuse"});
+    EXPECT_FALSE(c.ok);
+    EXPECT_EQ(c.note,
+              "`diffuse` in lit.frag takes (vec3) and returns float, but the lab asks for "
+              "`float diffuse(vec3 n, vec3 l)`");
+
+    c = compose(kStarter, {"diffuse"});
+    EXPECT_FALSE(c.ok);
+    EXPECT_TRUE(c.starter_untouched);
+    EXPECT_EQ(c.note, "`diffuse` in lit.frag is still as the starter had it");
+
+    const std::string global = R"(vec3 g_n;
+float diffuse(vec3 n, vec3 l) { return dot(g_n, l); }
+void main() { g_n = normalize(vec3(1.0)); }
+)";
+    c = compose(global, {"diffuse"});
+    EXPECT_FALSE(c.ok);
+    EXPECT_EQ(c.note, "`diffuse` in lit.frag reads the global variable `g_n`, which `main` sets");
+
+    c = compose("#ifdef X\nfloat diffuse(vec3 n, vec3 l) { return 1.0; }\n#endif\n", {"diffuse"});
+    EXPECT_FALSE(c.ok);
+    EXPECT_EQ(c.note, "lit.frag has #ifdef blocks, so its functions cannot be taken alone");
+}
+
+TEST(GlslCompose, AGlobalOnlyTheTakenCodeWritesComesAlong) {
+    const std::string student = R"(float g_calls;
+float diffuse(vec3 n, vec3 l) { g_calls += 1.0; return max(dot(n, l), 0.0); }
+void main() {}
+)";
+    const Composed c = compose(student, {"diffuse"});
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(c.imported, (std::vector<std::string>{"g_calls"}));
+}
+
+TEST(GlslCompose, TheReferenceItselfComposesToItself) {
+    const Composed c = compose(kReference, {"diffuse", "highlight"});
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(c.text, kReference);
+}
+
+}  // namespace
+}  // namespace shaderlab::glsl
