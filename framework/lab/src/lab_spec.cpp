@@ -70,6 +70,7 @@ void Validator::run() {
     checkCameras();
     checkScenes();
     checkGoals();
+    checkGoalWork();
     checkWork();
     if (check_disk_) checkFiles();
 }

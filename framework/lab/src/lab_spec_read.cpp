@@ -168,6 +168,10 @@ void Reader::run() {
             g.pipeline = goals[i].value("pipeline", false);
             if (goals[i].contains("depends_on"))
                 g.depends_on = goals[i]["depends_on"].get<std::vector<std::string>>();
+            for (const std::string& w : goals[i].value("work", std::vector<std::string>{})) {
+                const std::size_t colon = w.find(':');
+                g.work.push_back({w.substr(0, colon), colon == std::string::npos ? "" : w.substr(colon + 1)});
+            }
             spec_.goals.push_back(std::move(g));
         }
         if (doc_.contains("grading") && doc_["grading"].contains("points"))

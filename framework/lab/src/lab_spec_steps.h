@@ -129,6 +129,8 @@ class Validator {
     void addImplicitGoals();
     void checkGoalCoverage(const std::set<std::string>& covered);
     void checkGoalDependencies(const std::set<std::string>& ids);
+    // lab_spec_check_goal_work.cpp: what a goal's "work" names.
+    void checkGoalWork();
     // lab_spec_check_files.cpp: the lab folder and the files lab.json names.
     void checkId();
     void checkFile(const std::string& path, const std::string& file);

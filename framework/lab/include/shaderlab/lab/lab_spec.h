@@ -180,6 +180,12 @@ struct SceneSpec {
     std::string path;
 };
 
+// A piece of the student's work a goal is about: a function in a student file, or the whole file.
+struct GoalWork {
+    std::string file;
+    std::string function;  // empty: the whole file
+};
+
 // What a lab teaches, and what earns its points: a goal is met when every graded image of its
 // scenes and passes passes.
 struct GoalSpec {
@@ -194,6 +200,10 @@ struct GoalSpec {
     // Judged on the student's pipeline as it is, even where its passes are isolated (an error
     // that adds up pass after pass, like a blur pyramid's, shows only there).
     bool pipeline = false;
+    // The student's work the goal is about. When its checks fail on the student's whole shaders,
+    // it is judged again on renders of the reference solution with only this work taken from the
+    // student (docs/grading.md, "Goal isolation"); such a goal rests on no other (no depends_on).
+    std::vector<GoalWork> work;
     bool implicit = false;  // made by the parser for a lab without goals (one per scene)
 };
 
