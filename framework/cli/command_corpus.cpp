@@ -132,6 +132,27 @@ std::string compareHints(const LabHints& stored, const LabHints& fresh) {
     return {};
 }
 
+// Goal isolation (docs/grading.md): the goals a mistake fails that have work of their own are
+// judged on that work alone, unless the case lists them in "whole" (its work is not where the lab
+// asks), which must then be judged on the whole shaders and say why. "" when so; else the reasons,
+// starting with "; " unless `first`.
+std::string judgedAsExpected(const LabSpec& spec, const Case& c, const grader::ReportLab& l, bool first) {
+    std::string why;
+    auto add = [&](const std::string& reason) { why += (first && why.empty() ? "" : "; ") + reason; };
+    for (std::size_t i = 0; i < l.goals.size() && i < spec.goals.size(); ++i) {
+        const grader::ReportGoal& g = l.goals[i];
+        const bool listed = std::find(c.whole.begin(), c.whole.end(), g.id) != c.whole.end();
+        if (listed && (g.judged != "whole" || g.judged_note.empty()))
+            add("goal " + g.id + " must be judged on the whole shaders, saying why (it was judged " +
+                (g.judged.empty() ? std::string("without isolation") : g.judged) + ")");
+        const bool failed_with_work = !g.met && !spec.goals[i].work.empty();
+        if (!listed && failed_with_work && g.judged != "alone")
+            add("goal " + g.id + " must be judged on the student's own work for it (judged " + g.judged +
+                (g.judged_note.empty() ? "" : ": " + g.judged_note) + ")");
+    }
+    return why;
+}
+
 Outcome judge(const LabSpec& spec, const Case& c, const grader::Report& report, const std::string& where) {
     const std::string& lab = spec.id;
     Outcome o;
@@ -174,6 +195,7 @@ Outcome judge(const LabSpec& spec, const Case& c, const grader::Report& report, 
             if (!g.met && !expected.count(g.id))
                 o.why += (o.why.empty() ? "" : "; ") + std::string("goal ") + g.id +
                          " must stay met (only the goals in \"fails\" and those resting on them may fail)";
+        o.why += judgedAsExpected(spec, c, l, o.why.empty());
     }
     if (o.why.empty() && c.diagnostic) {
         bool found = false;

@@ -193,6 +193,8 @@ void printLab(const grader::ReportLab& lab, bool verbose) {
             for (const std::string& f : g.failing) where += (where.empty() ? "" : ", ") + f;
             std::printf("       not met in %s\n", where.c_str());
         }
+        const std::string judgement = grader::goalJudgement(g);
+        if (!judgement.empty()) std::printf("       %s\n", grader::printableText(judgement).c_str());
     }
 }
 

@@ -35,11 +35,13 @@ void checkCase(const json& c, const Case& k, const std::string& path, const LabS
         errors->push_back(path + ": an alternative must pass; it has no \"fails\" or \"status\"");
     std::vector<std::string> goal_ids;
     for (const GoalSpec& g : spec.goals) goal_ids.push_back(g.id);
-    if (c.contains("fails"))
-        for (const json& g : c["fails"])
-            if (std::find(goal_ids.begin(), goal_ids.end(), g.get<std::string>()) == goal_ids.end())
-                errors->push_back(path + ".fails: " + spec.id + " has no goal \"" + g.get<std::string>() +
-                                  "\"" + didYouMean(g.get<std::string>(), goal_ids));
+    for (const char* key : {"fails", "whole"})
+        if (c.contains(key))
+            for (const json& g : c[key])
+                if (std::find(goal_ids.begin(), goal_ids.end(), g.get<std::string>()) == goal_ids.end())
+                    errors->push_back(path + "." + key + ": " + spec.id + " has no goal \"" +
+                                      g.get<std::string>() + "\"" +
+                                      didYouMean(g.get<std::string>(), goal_ids));
 }
 
 }  // namespace
@@ -77,6 +79,7 @@ bool loadCases(const fs::path& file, const LabSpec& spec, std::vector<Case>* out
                                                                : "");
         if (c.contains("fails")) k.fails = c["fails"].get<std::vector<std::string>>();
         if (c.contains("delete")) k.remove = c["delete"].get<std::vector<std::string>>();
+        if (c.contains("whole")) k.whole = c["whole"].get<std::vector<std::string>>();
         if (c.contains("diagnostic")) k.diagnostic = {{c["diagnostic"]["file"], c["diagnostic"]["line"]}};
         k.timeout_s = c.value("timeout", 0.0);
         checkCase(c, k, path, spec, errors);

@@ -19,6 +19,7 @@ namespace shaderlab::cli {
 struct Case {
     std::string name, kind, about, status;
     std::vector<std::string> fails, remove;  // remove: "delete"
+    std::vector<std::string> whole;          // goals that must be judged on the whole shaders, with a note
     std::optional<std::pair<std::string, int>> diagnostic;
     double timeout_s = 0.0;
 };

@@ -559,12 +559,12 @@ void applyGoalDependencies(const LabSpec& spec, std::vector<grader::ReportGoal>*
     }
 }
 
-// Goals: met when every check of theirs passed (and the goals they rest on are met). A goal's
-// points are shared among its scenes for the per-scene figures, so scene scores add up to the lab's.
-void scoreGoals(const LabSpec& spec,
-                const std::map<std::pair<std::string, std::string>, bool>& pipeline_checks,
-                const std::map<std::pair<std::string, std::string>, bool>& isolated_checks,
-                grader::ReportLab* lab) {
+// Goals' own verdicts: met when every check of theirs passed. An isolated pass's check is its
+// verdict on the reference's inputs where it was judged so, unless the goal is judged on the
+// pipeline.
+std::vector<grader::ReportGoal> goalVerdicts(
+    const LabSpec& spec, const std::map<std::pair<std::string, std::string>, bool>& pipeline_checks,
+    const std::map<std::pair<std::string, std::string>, bool>& isolated_checks) {
     std::vector<grader::ReportGoal> goals;
     for (const GoalSpec& goal : spec.goals) {
         grader::ReportGoal rg;
@@ -575,18 +575,12 @@ void scoreGoals(const LabSpec& spec,
         rg.met = true;
         for (const std::string& scene : goal.scenes) {
             for (const std::string& pass : goal.passes) {
-                // An isolated pass's check is its verdict on the reference's inputs where it
-                // was judged so, unless the goal is judged on the pipeline.
                 const auto alone = isolated_checks.find({scene, pass});
-                if (!goal.pipeline && alone != isolated_checks.end()) {
-                    if (!alone->second) {
-                        rg.met = false;
-                        rg.failing.push_back(scene + "/" + pass);
-                    }
-                    continue;
-                }
                 const auto it = pipeline_checks.find({scene, pass});
-                if (it == pipeline_checks.end() || !it->second) {
+                const bool passed = !goal.pipeline && alone != isolated_checks.end()
+                                        ? alone->second
+                                        : it != pipeline_checks.end() && it->second;
+                if (!passed) {
                     rg.met = false;
                     rg.failing.push_back(scene + "/" + pass);
                 }
@@ -594,7 +588,12 @@ void scoreGoals(const LabSpec& spec,
         }
         goals.push_back(std::move(rg));
     }
-    applyGoalDependencies(spec, &goals);
+    return goals;
+}
+
+// The lab's score from its goals' final verdicts. A goal's points are shared among its scenes for
+// the per-scene figures, so scene scores add up to the lab's.
+void scoreGoals(const LabSpec& spec, std::vector<grader::ReportGoal>&& goals, grader::ReportLab* lab) {
     for (std::size_t i = 0; i < goals.size(); ++i) {
         const GoalSpec& goal = spec.goals[i];
         const grader::ReportGoal& rg = goals[i];
@@ -744,7 +743,10 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
     }
     explainSceneFailures(grading, &lab);
     judgeOnReferenceInputs(grading, submission_dir, ref, &lab);
-    scoreGoals(spec, grading.checks, grading.isolated_checks, &lab);
+    std::vector<grader::ReportGoal> goals = goalVerdicts(spec, grading.checks, grading.isolated_checks);
+    grading_detail::isolateGoals(spec, submission_dir, ref, options, &goals);
+    applyGoalDependencies(spec, &goals);
+    scoreGoals(spec, std::move(goals), &lab);
 
     lab.status = all_passed ? "passed" : "failed";
     if (!unloadable.message.empty()) lab.message += (lab.message.empty() ? "" : "; ") + unloadable.message;

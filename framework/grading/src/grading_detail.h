@@ -83,4 +83,14 @@ IsolatedRender renderOnReferenceInputs(const LabSpec& spec, const std::string& s
                                        const ReferenceImages& ref, const std::vector<std::string>& scenes,
                                        const GradeOptions& options);
 
+// Goal isolation (goal_isolation.cpp): each goal with work of its own that its checks on the
+// whole shaders failed, judged again on renders of the reference with only that work taken from
+// the submission; sets every goal's `judged` (and `judged_note` where it could not be done).
+void isolateGoals(const LabSpec& spec, const std::string& submission_dir, const ReferenceImages& ref,
+                  const GradeOptions& options, std::vector<grader::ReportGoal>* goals);
+
+// Where the reference's student files are read for goal isolation (GradeOptions::isolation_root,
+// else reference_root, else reference_solutions/ beside the labs); empty when there is none.
+std::string isolationRoot(const GradeOptions& options);
+
 }  // namespace shaderlab::grading_detail

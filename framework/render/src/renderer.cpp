@@ -79,6 +79,14 @@ bool LabRunner::prepare() {
 // course's shared folder): a submission can neither omit nor replace the instructor's shaders.
 FileText LabRunner::readProgramFile(const std::string& file) const {
     if (isStudentFile(file)) {
+        const auto given = options_.source_overrides.find(file);
+        if (given != options_.source_overrides.end()) {
+            FileText t;
+            t.ok = true;
+            t.path = file;
+            t.text = given->second;
+            return t;
+        }
         const std::string& root = options_.containment_root.empty() ? shader_dir_ : options_.containment_root;
         const std::string prefix = options_.containment_root.empty()
                                        ? std::string()

@@ -181,12 +181,8 @@ std::string reportToJson(const Report& report) {
         }
         json goals = json::array();
         for (const ReportGoal& g : lab.goals) {
-            json goal = {{"id", g.id},
-                         {"title", g.title},
-                         {"points", number(g.points)},
-                         {"met", g.met},
-                         {"failing", g.failing},
-                         {"not_met_because", g.not_met_because},
+            json goal = {{"id", g.id},        {"title", g.title},     {"points", number(g.points)},
+                         {"met", g.met},      {"failing", g.failing}, {"not_met_because", g.not_met_because},
                          {"scenes", g.scenes}};
             if (!g.judged.empty()) goal["judged"] = g.judged;
             if (!g.judged_note.empty()) goal["judged_note"] = g.judged_note;

@@ -527,6 +527,18 @@ void writeScene(std::ostringstream& h, const ReportLab& lab, const ReportScene& 
 
 }  // namespace
 
+std::string goalJudgement(const ReportGoal& goal) {
+    if (goal.judged == "alone" && goal.met && !goal.whole_failing.empty())
+        return "Your own work for it is right: its pictures fail only because of another part.";
+    if (goal.judged == "alone" && goal.met) return "Your own work for it is right.";
+    if (goal.judged == "alone")
+        return "Judged on your own work for it, the rest taken from the reference solution: still wrong.";
+    if (goal.judged == "whole" && !goal.met && !goal.judged_note.empty())
+        return "Judged on your whole shaders, because your work for it could not be taken alone: " +
+               goal.judged_note + ".";
+    return "";
+}
+
 // "the ramp goal" or "'Ramp' and 'Edges'": the titles of the goals `ids` names, quoted.
 std::string goalsNamed(const ReportLab& lab, const std::vector<std::string>& ids) {
     std::string out;
@@ -576,6 +588,10 @@ void writeGoals(std::ostringstream& h, const ReportLab& lab) {
             h << escapeMarkup(pass);
         }
         if (!g.failing.empty() && g.not_met_because.empty()) h << ")</span>";
+        const std::string judgement = goalJudgement(g);
+        if (!judgement.empty())
+            h << "<br><span class=\"info judged-" << escapeMarkup(g.judged) << "\">"
+              << escapeMarkup(judgement) << "</span>";
         h << "</td><td class=\"num\">" << num(g.met ? g.points : 0.0, "%.2f") << " / "
           << num(g.points, "%.2f") << "</td><td class=\"num " << (g.met ? "ok\">met" : "bad\">not met")
           << "</td></tr>\n";
@@ -757,11 +773,16 @@ namespace detail {
 
 std::string gradescopeGoalHtml(const ReportLab& lab, const ReportGoal& goal, Budget& budget) {
     std::ostringstream h;
+    const std::string judgement = goalJudgement(goal);
     if (goal.met) {
         h << "<p><b>Met</b> (" << num(goal.points, "%.2f")
-          << " points): every image that shows it matches the reference.</p>";
+          << (goal.judged == "alone" ? " points)."
+                                     : " points): every image that shows it matches the reference.");
+        if (!judgement.empty()) h << " " << escapeMarkup(judgement);
+        h << "</p>";
         return h.str();
     }
+    if (!judgement.empty()) h << "<p>" << escapeMarkup(judgement) << "</p>\n";
     if (!goal.not_met_because.empty()) {
         h << "<p><b>Not met</b> (0 of " << num(goal.points, "%.2f") << " points) because "
           << escapeMarkup(goalsNamed(lab, goal.not_met_because))

@@ -78,12 +78,16 @@ grader::Report sampleReport() {
     lit.title = "Diffuse term";
     lit.points = 7.5;
     lit.met = true;
+    lit.judged = "alone";
+    lit.whole_failing = {"torus/shade"};
     grader::ReportGoal lobe;
     lobe.id = "highlight";
     lobe.title = "Phong highlight";
     lobe.points = 2.5;
     lobe.failing = {"torus/shade"};
     lobe.scenes = {"torus"};
+    lobe.judged = "whole";
+    lobe.judged_note = "phong.frag has no function `float highlight(vec3 n)`";
     built.goals = {lit, lobe};
 
     grader::ReportLab broken;
@@ -129,6 +133,9 @@ TEST(ReportJson, RoundTripsEveryField) {
     EXPECT_TRUE(out.labs[0].goals[0].met);
     EXPECT_EQ(out.labs[0].goals[1].failing, std::vector<std::string>{"torus/shade"});
     EXPECT_EQ(out.labs[0].goals[1].scenes, std::vector<std::string>{"torus"});
+    EXPECT_EQ(out.labs[0].goals[0].judged, "alone");
+    EXPECT_EQ(out.labs[0].goals[0].whole_failing, std::vector<std::string>{"torus/shade"});
+    EXPECT_EQ(out.labs[0].goals[1].judged_note, in.labs[0].goals[1].judged_note);
     // The optional fields of schema 2.
     const grader::ReportPass& pass = out.labs[0].scenes[1].passes.at(0);
     EXPECT_TRUE(pass.thresholds.known);
@@ -343,4 +350,33 @@ TEST(ReportMarkup, EscapesEveryKindOfByteInsideAndBetweenPlainRuns) {
     EXPECT_EQ(grader::escapeMarkup(in), expected);
     EXPECT_EQ(grader::escapeMarkup(""), "");
     EXPECT_EQ(grader::escapeMarkup("plain"), "plain");
+}
+
+TEST(ReportGoalJudgement, SaysHowEachGoalWasJudged) {
+    grader::ReportGoal g;
+    g.met = true;
+    EXPECT_EQ(grader::goalJudgement(g), "");  // an older report, or met on the whole shaders
+    g.judged = "whole";
+    EXPECT_EQ(grader::goalJudgement(g), "");
+    g.judged = "alone";
+    g.whole_failing = {"torus/shade"};
+    EXPECT_EQ(grader::goalJudgement(g),
+              "Your own work for it is right: its pictures fail only because of another part.");
+    g.met = false;
+    EXPECT_NE(grader::goalJudgement(g).find("still wrong"), std::string::npos);
+    g.judged = "whole";
+    g.judged_note = "phong.frag has no function `vec3 diffuse(vec3 n)`";
+    EXPECT_EQ(
+        grader::goalJudgement(g),
+        "Judged on your whole shaders, because your work for it could not be taken alone: phong.frag has no "
+        "function `vec3 diffuse(vec3 n)`.");
+    // The report page says it beside the goal, escaped.
+    grader::Report r;
+    grader::ReportLab lab;
+    lab.id = "01-phong";
+    lab.goals = {g};
+    r.labs = {lab};
+    EXPECT_NE(grader::reportToHtml(r).find("could not be taken alone: phong.frag has no function `vec3 "
+                                           "diffuse(vec3 n)`."),
+              std::string::npos);
 }

@@ -20,8 +20,13 @@ namespace shaderlab {
 
 struct GradeOptions {
     Backend backend = Backend::OSMesa;
-    std::string labs_root;          // where lab.json files live
-    std::string reference_root;     // folder mirroring labs/ with reference shaders; empty or absent: goldens
+    std::string labs_root;       // where lab.json files live
+    std::string reference_root;  // folder mirroring labs/ with reference shaders; empty or absent: goldens
+    // Where goal isolation (docs/grading.md, "Goal isolation") reads the reference's student files
+    // to compose with the student's work; empty: reference_root, or else the reference_solutions/
+    // folder beside labs_root when there is one. Only sources are read there: the images the
+    // isolated renders are compared with are the reference images of the grade.
+    std::string isolation_root;
     std::vector<std::string> labs;  // empty: every lab under labs_root
     std::string out_dir;            // images go to out_dir/<lab>/<scene>/; empty: no pictures written
     IsolationLimits limits;

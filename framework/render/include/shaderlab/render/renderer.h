@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -85,6 +86,10 @@ struct RenderOptions {
     // drew, wherever one is given (standInSource in lab_spec.h says which it wants). Empty: the
     // pipeline as it is.
     std::vector<StandIn> stand_ins;
+    // Student files given as text instead of read from the submission (goal isolation: the
+    // reference's files with some of the student's functions swapped in), by their name in
+    // lab.json. Includes of student files are looked up here too.
+    std::map<std::string, std::string> source_overrides;
     // Not Off: renderLab draws this debug view of every scene (renderDebugView, debug_view.h) and
     // reads none of the submission's files.
     DebugView debug_view = DebugView::Off;

@@ -173,6 +173,12 @@ std::string escapeMarkup(const std::string& s);
 // The titles of the goals of `lab` that `ids` names, quoted and joined: "'Ramp' and 'Edges'".
 std::string goalsNamed(const ReportLab& lab, const std::vector<std::string>& ids);
 
+// How a goal was judged, in one sentence for the student (goal isolation, docs/grading.md), or ""
+// when there is nothing to say (met on the whole shaders, or a report without the fields):
+// "Judged on your own work for it: ...", "Your own work for it is right ...", "Judged on your
+// whole shaders: <why>." Every report writer, `check` and the workbench say the same.
+std::string goalJudgement(const ReportGoal& goal);
+
 std::string formatDiagnostic(const ReportDiagnostic& d, const std::string& prefix = "",
                              const std::string& indent = "");
 // Where the writers that show pictures find them. With `image_root` (the folder the report's
