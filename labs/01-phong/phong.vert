@@ -13,14 +13,16 @@ uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model))), provided by
 out vec3 v_world_position;
 out vec3 v_world_normal;
 
+// The normal in world space.
+vec3 worldNormal(vec3 normal) {
+    // TODO(student): think about which matrix keeps a normal perpendicular to the surface when
+    // the model is scaled more along one axis than another (the "nonuniform_scale" scene).
+    return normal;
+}
+
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world_position = world.xyz;
-
-    // TODO(student): bring the normal into world space. Think about which matrix keeps it
-    // perpendicular to the surface when the model is scaled more along one axis than another
-    // (the "nonuniform_scale" scene checks this).
-    v_world_normal = a_normal;
-
+    v_world_normal = worldNormal(a_normal);
     gl_Position = u_projection * u_view * world;
 }

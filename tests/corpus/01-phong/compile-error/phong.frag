@@ -1,7 +1,5 @@
 #version 330 core
-// Reference solution, 01-phong: Phong reflection model evaluated per fragment.
-//   I = ka * C + sum_i L_i * (kd * max(n.l_i, 0) * C + ks * max(r_i.v, 0)^shininess)
-// (Phong, "Illumination for Computer Generated Pictures", CACM 18(6), 1975.)
+// 01-phong, fragment stage. A missing semicolon.
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -19,24 +17,37 @@ uniform float u_shininess;
 
 out vec4 o_color;
 
+vec3 toLight(vec4 light_position, vec3 p) {
+    // Works for both kinds: for w = 0 the position term vanishes.
+    return normalize(light_position.xyz - p * light_position.w);
+}
+
+vec3 diffuse(vec3 n, vec3 l, vec3 base_color) {
+    return u_diffuse * max(dot(n, l), 0.0) * base_color;
+}
+
+float phongHighlight(vec3 n, vec3 l, vec3 v) {
+    // r = l_in - 2(n.l_in)n needs l_in pointing from the light toward the surface.
+    vec3 incident = -l;
+    vec3 r = incident - 2.0 * dot(n, incident) * n;
+    return u_specular * pow(max(dot(r, v), 0.0), u_shininess);
+}
+
+vec3 shadeLight(vec3 n, vec3 l, vec3 v, vec3 light_color, vec3 base_color) {
+    if (dot(n, l) <= 0.0) {
+        return vec3(0.0);  // the light is behind the surface: no diffuse, no highlight
+    }
+    return light_color * (diffuse(n, l, base_color) + phongHighlight(n, l, v));
+}
+
 void main() {
     // Interpolation shortens normals: renormalise per fragment.
     vec3 n = normalize(v_world_normal);
     vec3 v = normalize(u_camera_position - v_world_position)
     vec3 color = u_ambient * u_base_color.rgb;
     for (int i = 0; i < u_light_count; ++i) {
-        vec4 light = u_light_position[i];
-        // Works for both kinds: for w = 0 the position term vanishes.
-        vec3 to_light = normalize(light.xyz - v_world_position * light.w);
-        float n_dot_l = dot(n, to_light);
-        if (n_dot_l <= 0.0) {
-            continue;  // the light is behind the surface: no diffuse, no highlight
-        }
-        // r = l - 2(n.l)n needs l pointing from the light toward the surface.
-        vec3 incident = -to_light;
-        vec3 r = incident - 2.0 * dot(n, incident) * n;
-        float highlight = pow(max(dot(r, v), 0.0), u_shininess);
-        color += u_light_color[i] * (u_diffuse * n_dot_l * u_base_color.rgb + u_specular * highlight);
+        vec3 l = toLight(u_light_position[i], v_world_position);
+        color += shadeLight(n, l, v, u_light_color[i], u_base_color.rgb);
     }
     o_color = vec4(color, 1.0);
 }

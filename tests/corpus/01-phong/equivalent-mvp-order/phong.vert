@@ -1,5 +1,5 @@
 #version 330 core
-// Reference solution, 01-phong: world-space position and normal for per-fragment lighting.
+// 01-phong, vertex stage. (P*V*M)*p: the same maths, rounded differently.
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -12,11 +12,15 @@ uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model)))
 out vec3 v_world_position;
 out vec3 v_world_normal;
 
+vec3 worldNormal(vec3 normal) {
+    // Normals transform with the inverse transpose so they stay perpendicular to the surface
+    // under non-uniform scale.
+    return u_normal_matrix * normal;
+}
+
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world_position = world.xyz;
-    // Normals transform with the inverse transpose so they stay perpendicular to the surface
-    // under non-uniform scale.
-    v_world_normal = u_normal_matrix * a_normal;
+    v_world_normal = worldNormal(a_normal);
     gl_Position = (u_projection * u_view * u_model) * vec4(a_position, 1.0);
 }

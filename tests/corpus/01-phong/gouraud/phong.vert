@@ -19,6 +19,8 @@ uniform float u_diffuse;
 uniform float u_specular;
 uniform float u_shininess;
 
+out vec3 v_world_position;
+out vec3 v_world_normal;
 out vec3 v_color;
 
 void main() {
@@ -37,5 +39,7 @@ void main() {
                                      u_specular * pow(max(dot(r, v), 0.0), u_shininess));
     }
     v_color = color;
+    v_world_position = world.xyz;
+    v_world_normal = n;
     gl_Position = u_projection * u_view * world;
 }

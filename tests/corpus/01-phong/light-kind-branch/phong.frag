@@ -1,6 +1,6 @@
 #version 330 core
-// 01-phong, fragment stage. One function per light; point and directional lights told apart
-// by w; the reflection vector from the textbook formula r = 2(n.l)n - l (l toward the light).
+// 01-phong, fragment stage. An explicit branch on w for the two kinds of light; the textbook
+// r = 2(n.l)n - l, with l toward the light.
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -18,32 +18,46 @@ uniform float u_shininess;
 
 out vec4 o_color;
 
-vec3 directionToLight(vec4 light, vec3 p) {
-    if (light.w == 0.0) {
-        return normalize(light.xyz);  // directional: xyz already points toward the light
+vec3 toLight(vec4 light_position, vec3 p) {
+    if (light_position.w == 0.0) {
+        // A sun: xyz is already the direction toward it.
+        return normalize(light_position.xyz);
     }
-    return normalize(light.xyz / light.w - p);  // point light
+    vec3 lamp = light_position.xyz / light_position.w;
+    return normalize(lamp - p);
 }
 
-vec3 shadeOne(vec3 n, vec3 v, vec3 p, int i) {
-    vec3 l = directionToLight(u_light_position[i], p);
-    float n_dot_l = dot(n, l);
-    if (n_dot_l <= 0.0) {
-        return vec3(0.0);  // lit from behind: this light contributes nothing here
+vec3 diffuse(vec3 n, vec3 l, vec3 base_color) {
+    float cosine = dot(n, l);
+    if (cosine < 0.0) cosine = 0.0;
+    return cosine * u_diffuse * base_color;
+}
+
+float phongHighlight(vec3 n, vec3 l, vec3 v) {
+    vec3 mirrored = 2.0 * dot(n, l) * n - l;
+    float alignment = max(0.0, dot(mirrored, v));
+    return u_specular * pow(alignment, u_shininess);
+}
+
+vec3 shadeLight(vec3 n, vec3 l, vec3 v, vec3 light_color, vec3 base_color) {
+    bool facing = dot(n, l) > 0.0;
+    vec3 result = vec3(0.0);
+    if (facing) {
+        result = diffuse(n, l, base_color) * light_color;
+        result += phongHighlight(n, l, v) * light_color;
     }
-    vec3 r = 2.0 * n_dot_l * n - l;
-    float r_dot_v = max(dot(r, v), 0.0);
-    vec3 diffuse = u_diffuse * n_dot_l * u_base_color.rgb;
-    vec3 specular = vec3(u_specular * pow(r_dot_v, u_shininess));
-    return u_light_color[i] * (diffuse + specular);
+    return result;
 }
 
 void main() {
-    vec3 n = normalize(v_world_normal);
-    vec3 v = normalize(u_camera_position - v_world_position);
-    vec3 color = u_ambient * u_base_color.rgb;
-    for (int i = 0; i < u_light_count; ++i) {
-        color += shadeOne(n, v, v_world_position, i);
+    vec3 normal = normalize(v_world_normal);
+    vec3 eye_dir = normalize(u_camera_position - v_world_position);
+    vec3 sum = vec3(0.0);
+    int i = 0;
+    while (i < u_light_count) {
+        sum += shadeLight(normal, toLight(u_light_position[i], v_world_position), eye_dir, u_light_color[i],
+                          u_base_color.rgb);
+        i++;
     }
-    o_color = vec4(color, 1.0);
+    o_color = vec4(u_ambient * u_base_color.rgb + sum, 1.0);
 }

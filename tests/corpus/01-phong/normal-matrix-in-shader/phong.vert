@@ -1,6 +1,5 @@
 #version 330 core
-// 01-phong, vertex stage. The normal matrix is computed here rather than taken from
-// u_normal_matrix: the inverse transpose of the model matrix's linear part.
+// 01-phong, vertex stage. The normal matrix computed here; u_view_projection for the position.
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -11,10 +10,13 @@ uniform mat4 u_view_projection;
 out vec3 v_world_position;
 out vec3 v_world_normal;
 
+vec3 worldNormal(vec3 normal) {
+    return transpose(inverse(mat3(u_model))) * normal;
+}
+
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world_position = world.xyz;
-    mat3 normal_matrix = transpose(inverse(mat3(u_model)));
-    v_world_normal = normal_matrix * a_normal;
+    v_world_normal = worldNormal(a_normal);
     gl_Position = u_view_projection * world;
 }

@@ -1,12 +1,12 @@
 #version 330 core
-// 01-phong, fragment stage: Phong reflection model per fragment, with GLSL's reflect().
+// 01-phong, fragment stage. reflect() for the mirror direction, the guard as a ternary.
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
 
 uniform vec3 u_camera_position;
 uniform int u_light_count;
-uniform vec4 u_light_position[SL_MAX_LIGHTS];
+uniform vec4 u_light_position[SL_MAX_LIGHTS];  // w = 1: point light; w = 0: direction toward the light
 uniform vec3 u_light_color[SL_MAX_LIGHTS];
 uniform vec4 u_base_color;
 
@@ -17,22 +17,33 @@ uniform float u_shininess;
 
 out vec4 o_color;
 
+vec3 toLight(vec4 light_position, vec3 p) {
+    // Works for both kinds: for w = 0 the position term vanishes.
+    return normalize(light_position.xyz - p * light_position.w);
+}
+
+vec3 diffuse(vec3 n, vec3 l, vec3 base_color) {
+    return base_color * (max(dot(n, l), 0.0) * u_diffuse);
+}
+
+float phongHighlight(vec3 n, vec3 l, vec3 v) {
+    vec3 r = reflect(-l, n);  // reflect() wants the incident direction, toward the surface
+    return pow(max(dot(r, v), 0.0), u_shininess) * u_specular;
+}
+
+vec3 shadeLight(vec3 n, vec3 l, vec3 v, vec3 light_color, vec3 base_color) {
+    return dot(n, l) > 0.0 ? light_color * diffuse(n, l, base_color) + light_color * phongHighlight(n, l, v)
+                           : vec3(0.0);
+}
+
 void main() {
-    vec3 N = normalize(v_world_normal);
-    vec3 V = normalize(u_camera_position - v_world_position);
-
-    vec3 diffuse_sum = vec3(0.0);
-    vec3 specular_sum = vec3(0.0);
+    // Interpolation shortens normals: renormalise per fragment.
+    vec3 n = normalize(v_world_normal);
+    vec3 v = normalize(u_camera_position - v_world_position);
+    vec3 color = u_ambient * u_base_color.rgb;
     for (int i = 0; i < u_light_count; ++i) {
-        vec3 L = normalize(u_light_position[i].xyz - u_light_position[i].w * v_world_position);
-        float lambert = max(dot(N, L), 0.0);
-        // reflect(I, N) wants the incident direction, travelling toward the surface: -L.
-        vec3 R = reflect(-L, N);
-        float phong = lambert > 0.0 ? pow(max(dot(R, V), 0.0), u_shininess) : 0.0;
-        diffuse_sum += lambert * u_light_color[i];
-        specular_sum += phong * u_light_color[i];
+        vec3 l = toLight(u_light_position[i], v_world_position);
+        color += shadeLight(n, l, v, u_light_color[i], u_base_color.rgb);
     }
-
-    vec3 color = u_base_color.rgb * (u_ambient + u_diffuse * diffuse_sum) + u_specular * specular_sum;
     o_color = vec4(color, 1.0);
 }
