@@ -224,8 +224,8 @@ TEST_F(LabAuthoring, LabCheckFindsAStaleReadmeTableAndFixRewritesIt) {
     const fs::path readme = lab() / "README.md";
     // A goal renamed and its points moved: the goals table no longer says what lab.json does.
     std::string lab_json = readText(lab() / "lab.json");
-    lab_json = replaced(lab_json, "TODO: a second idea, which rests on the first\", \"points\": 5",
-                        "Shading that rests on the first idea\", \"points\": 6");
+    lab_json = replaced(lab_json, "TODO: a second idea: the parts put together\", \"points\": 5",
+                        "Shading put together\", \"points\": 6");
     lab_json = replaced(lab_json, "a student learns, in a few words\", \"points\": 5",
                         "a student learns, in a few words\", \"points\": 4");
     writeText(lab() / "lab.json", lab_json);
@@ -241,10 +241,11 @@ TEST_F(LabAuthoring, LabCheckFindsAStaleReadmeTableAndFixRewritesIt) {
 
     const CliRun fixed = labCheck(" --fix");
     EXPECT_EQ(statusOf(fixed.output, "README tables"), "fixed") << fixed.output;
-    std::string expected =
-        replaced(stale, "TODO: a second idea, which rests on the first (`second_idea`) | 5",
-                 "Shading that rests on the first idea (`second_idea`) | 6");
-    expected = replaced(expected, "(`first_idea`) | 5", "(`first_idea`) | 4");
+    std::string expected = replaced(
+        stale, "TODO: a second idea: the parts put together (`second_idea`) | `main` in shade.frag | 5",
+        "Shading put together (`second_idea`) | `main` in shade.frag | 6");
+    expected = replaced(expected, "(`first_idea`) | `lightAt` in shade.frag | 5",
+                        "(`first_idea`) | `lightAt` in shade.frag | 4");
     EXPECT_EQ(readText(readme), expected);  // the text outside the markers as it was
     EXPECT_EQ(statusOf(labCheck().output, "README tables"), "ok");
 

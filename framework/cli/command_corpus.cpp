@@ -19,10 +19,11 @@
 #include <sstream>
 
 #include "commands.h"
-#include "corpus_cases.h"
-#include "corpus_margins.h"
 #include "grader/metrics/metrics.h"
 #include "grader/reports/report.h"
+#include "shaderlab/authoring/corpus_cases.h"
+#include "shaderlab/authoring/corpus_margins.h"
+#include "shaderlab/authoring/corpus_verdict.h"
 #include "shaderlab/base/paths.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/grading/mistake_hints.h"
@@ -33,6 +34,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace shaderlab::cli {
+
+using namespace authoring;
 
 namespace {
 
@@ -132,31 +135,9 @@ std::string compareHints(const LabHints& stored, const LabHints& fresh) {
     return {};
 }
 
-// Goal isolation (docs/grading.md): the goals a mistake fails that have work of their own are
-// judged on that work alone, unless the case lists them in "whole" (its work is not where the lab
-// asks), which must then be judged on the whole shaders and say why. "" when so; else the reasons,
-// starting with "; " unless `first`.
-std::string judgedAsExpected(const LabSpec& spec, const Case& c, const grader::ReportLab& l, bool first) {
-    std::string why;
-    auto add = [&](const std::string& reason) { why += (first && why.empty() ? "" : "; ") + reason; };
-    for (std::size_t i = 0; i < l.goals.size() && i < spec.goals.size(); ++i) {
-        const grader::ReportGoal& g = l.goals[i];
-        const bool listed = std::find(c.whole.begin(), c.whole.end(), g.id) != c.whole.end();
-        if (listed && (g.judged != "whole" || g.judged_note.empty()))
-            add("goal " + g.id + " must be judged on the whole shaders, saying why (it was judged " +
-                (g.judged.empty() ? std::string("without isolation") : g.judged) + ")");
-        const bool failed_with_work = !g.met && !spec.goals[i].work.empty();
-        if (!listed && failed_with_work && g.judged != "alone")
-            add("goal " + g.id + " must be judged on the student's own work for it (judged " + g.judged +
-                (g.judged_note.empty() ? "" : ": " + g.judged_note) + ")");
-    }
-    return why;
-}
-
 Outcome judge(const LabSpec& spec, const Case& c, const grader::Report& report, const std::string& where) {
-    const std::string& lab = spec.id;
     Outcome o;
-    o.lab = lab;
+    o.lab = spec.id;
     o.name = c.name;
     o.kind = c.kind;
     o.about = c.about;
@@ -171,38 +152,7 @@ Outcome judge(const LabSpec& spec, const Case& c, const grader::Report& report, 
     o.max_score = l.max_score;
     for (const grader::ReportGoal& g : l.goals)
         if (!g.met) o.goals_failed.push_back(g.id);
-    auto goalMet = [&](const std::string& id) {
-        for (const grader::ReportGoal& g : l.goals)
-            if (g.id == id) return g.met;
-        return false;
-    };
-    const bool full = l.score >= l.max_score - 1e-9;
-    if (c.kind == "alternative" || c.kind == "reference") {
-        if (l.status != "passed" || !full) o.why = "must pass with full marks";
-    } else if (c.kind == "starter") {
-        if (l.status != "failed") o.why = "must render and fail (compile, run, but not pass)";
-    } else if (l.status != c.status) {
-        o.why = "must end as " + c.status;
-    } else if (c.kind == "mistake") {
-        // A mistake costs the goal whose idea it breaks and the goals declared to rest on it,
-        // nothing else (issue 24: the grade names the one idea missed).
-        if (full) o.why = "must lose points";
-        const std::set<std::string> expected = expectedFailures(spec, c.fails);
-        for (const std::string& g : c.fails)
-            if (goalMet(g))
-                o.why += (o.why.empty() ? "" : "; ") + std::string("goal ") + g + " must not be met";
-        for (const grader::ReportGoal& g : l.goals)
-            if (!g.met && !expected.count(g.id))
-                o.why += (o.why.empty() ? "" : "; ") + std::string("goal ") + g.id +
-                         " must stay met (only the goals in \"fails\" and those resting on them may fail)";
-        o.why += judgedAsExpected(spec, c, l, o.why.empty());
-    }
-    if (o.why.empty() && c.diagnostic) {
-        bool found = false;
-        for (const grader::ReportDiagnostic& d : l.diagnostics)
-            found = found || (d.file == c.diagnostic->first && d.line == c.diagnostic->second);
-        if (!found) o.why = "must report " + c.diagnostic->first + ":" + std::to_string(c.diagnostic->second);
-    }
+    o.why = expectationsMissed(spec, c, l);
     o.ok = o.why.empty();
     return o;
 }

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "corpus_cases.h"
+#include "shaderlab/authoring/corpus_cases.h"
 #include "shaderlab/base/json_messages.h"
 #include "shaderlab/base/paths.h"
 #include "shaderlab/lab/lab_spec.h"
@@ -28,6 +28,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace shaderlab::cli {
+
+using namespace authoring;
 
 namespace {
 

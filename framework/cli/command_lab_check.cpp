@@ -22,9 +22,9 @@
 #include <vector>
 
 #include "commands.h"
-#include "corpus_cases.h"
 #include "grader/base/atomic_file.h"
-#include "lab_readme_tables.h"
+#include "shaderlab/authoring/corpus_cases.h"
+#include "shaderlab/authoring/readme_tables.h"
 #include "shaderlab/base/json_messages.h"
 #include "shaderlab/base/paths.h"
 #include "shaderlab/grading/grading.h"
@@ -35,6 +35,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace shaderlab::cli {
+
+using namespace authoring;
 
 namespace {
 

@@ -20,7 +20,7 @@
 
 #include "commands.h"
 #include "grader/base/atomic_file.h"
-#include "lab_readme_tables.h"
+#include "shaderlab/authoring/readme_tables.h"
 #include "shaderlab/base/json_messages.h"
 #include "shaderlab/base/paths.h"
 #include "shaderlab/lab/lab_catalog.h"
@@ -30,6 +30,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace shaderlab::cli {
+
+using namespace authoring;
 
 namespace {
 
@@ -66,7 +68,8 @@ std::string readmeTitle(const std::string& id, const std::string& title) {
 std::string quoted(const std::string& s) { return json(s).dump(); }
 
 // A lab that parses and renders: one graded pass of the course's usual lighting inputs, two
-// scenes, two goals (the second resting on the first, to show depends_on).
+// scenes, two goals, each judged on the student's own work for it (a function, and main as the
+// glue: docs/grading.md, "Goal isolation").
 std::string scaffoldLabJson(const std::string& id, const std::string& title) {
     return R"({
   "$schema": "../../docs/lab.schema.json",
@@ -81,9 +84,9 @@ std::string scaffoldLabJson(const std::string& id, const std::string& title) {
   "student_files": ["shade.frag"],
   "goals": [
     { "id": "first_idea", "title": "TODO: the first idea a student learns, in a few words", "points": 5,
-      "scenes": ["sphere"] },
-    { "id": "second_idea", "title": "TODO: a second idea, which rests on the first", "points": 5,
-      "scenes": ["teapot"], "depends_on": ["first_idea"] }
+      "work": ["shade.frag:lightAt"], "scenes": ["sphere"] },
+    { "id": "second_idea", "title": "TODO: a second idea: the parts put together", "points": 5,
+      "work": ["shade.frag:main"], "scenes": ["teapot"] }
   ],
   "passes": [
     {
@@ -147,11 +150,18 @@ uniform float u_ambient;                       // lab.json sets it
 
 out vec4 o_color;
 
+// What light i adds at this fragment. (For the instructor: one function per idea, each named in
+// its goal's "work", so that each goal is judged on the student's own work for it.)
+vec3 lightAt(int i, vec3 n) {
+    // TODO(student)
+    return vec3(0.0);
+}
+
 void main() {
     vec3 n = normalize(v_world_normal);
     vec3 color = u_ambient * u_base_color.rgb;
     for (int i = 0; i < u_light_count; ++i) {
-        // TODO(student): what light i adds at this fragment.
+        color += lightAt(i, n);
     }
     o_color = vec4(color, 1.0);
 }
@@ -242,7 +252,8 @@ std::string sectionBody(const std::string& heading, const LabSpec& spec) {
     if (heading == "## Pitfalls")
         return "- TODO: each known mistake in plain words (they are the corpus's mistakes).\n";
     if (heading == "## Learning goals")
-        return "Each goal, its points, where it is seen and what it rests on (written from lab.json: after "
+        return "Each goal, the work it is judged on, its points and where it is seen (written from lab.json: "
+               "after "
                "changing it, run `shaderlab lab-check " +
                spec.id + " --fix`):\n\n" + generatedBlock("goals", spec);
     if (heading == "## How it is graded")

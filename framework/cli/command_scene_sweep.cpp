@@ -22,10 +22,10 @@
 #include <vector>
 
 #include "commands.h"
-#include "corpus_cases.h"
 #include "grader/reports/report.h"
-#include "scene_sweep.h"
-#include "scene_sweep_score.h"
+#include "shaderlab/authoring/corpus_cases.h"
+#include "shaderlab/authoring/scene_sweep.h"
+#include "shaderlab/authoring/scene_sweep_score.h"
 #include "shaderlab/base/json_messages.h"
 #include "shaderlab/base/paths.h"
 #include "shaderlab/grading/grading.h"
@@ -35,6 +35,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace shaderlab::cli {
+
+using namespace authoring;
 
 namespace {
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace shaderlab::cli::sweep {
+namespace shaderlab::authoring::sweep {
 
 // Keeps lab.json's key order in the scenes the sweep prints for pasting.
 using ojson = nlohmann::ordered_json;
@@ -75,4 +75,4 @@ ojson getPath(const ojson& scene, const std::string& path);
 // `{ "name": "a", "lights": [{ "type": "point" }] }`: one line, spaced as lab.json is written.
 std::string compactJson(const ojson& v);
 
-}  // namespace shaderlab::cli::sweep
+}  // namespace shaderlab::authoring::sweep

@@ -1,6 +1,6 @@
 // `shaderlab corpus --margins` (corpus_margins.h): the factors by which a lab's corpus verdicts
 // hold, from the reports `corpus` wrote. Reads report.json files; writes margins.json; prints.
-#include "corpus_margins.h"
+#include "shaderlab/authoring/corpus_margins.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-namespace shaderlab::cli {
+namespace shaderlab::authoring {
 
 namespace {
 
@@ -417,4 +417,4 @@ std::map<std::string, json> reportLabMargins(const LabSpec& spec, const std::vec
     return per_case;
 }
 
-}  // namespace shaderlab::cli
+}  // namespace shaderlab::authoring

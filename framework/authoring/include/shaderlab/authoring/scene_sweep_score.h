@@ -31,11 +31,11 @@
 #include <string>
 #include <vector>
 
-#include "corpus_margins.h"
-#include "scene_sweep.h"
+#include "shaderlab/authoring/corpus_margins.h"
+#include "shaderlab/authoring/scene_sweep.h"
 #include "shaderlab/lab/lab_spec.h"
 
-namespace shaderlab::cli::sweep {
+namespace shaderlab::authoring::sweep {
 
 // One graded image of one case drawn on one candidate.
 struct ImageResult {
@@ -103,4 +103,4 @@ ojson pasteableScene(const Candidate& c, const std::string& base_name);
 ojson rankingJson(const std::vector<Candidate>& candidates, const std::vector<Variation>& vary,
                   const std::vector<CandidateScore>& ranked, const std::string& base_name);
 
-}  // namespace shaderlab::cli::sweep
+}  // namespace shaderlab::authoring::sweep

@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "corpus_cases.h"
+#include "shaderlab/authoring/corpus_cases.h"
 #include "shaderlab/lab/lab_spec.h"
 
-namespace shaderlab::cli {
+namespace shaderlab::authoring {
 
 // For the lab `spec` whose corpus `cases` were graded into `lab_out`/reports/<case>/report.json
 // (the reference's under "reference"): prints the margins table and summary, writes
@@ -47,4 +47,4 @@ VerdictMargin verdictMargin(const nlohmann::json& judged, const nlohmann::json& 
 // A factor as the table prints it: "2.5x", ">1000x", "inf", "n/a" (NaN).
 std::string factorText(double f);
 
-}  // namespace shaderlab::cli
+}  // namespace shaderlab::authoring

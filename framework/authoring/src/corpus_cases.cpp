@@ -1,5 +1,5 @@
 // cases.json read and checked; see corpus_cases.h.
-#include "corpus_cases.h"
+#include "shaderlab/authoring/corpus_cases.h"
 
 #include <algorithm>
 #include <nlohmann/json.hpp>
@@ -15,7 +15,7 @@ namespace shaderlab {
 extern const char* const kCorpusSchemaJson;  // generated from docs/corpus.schema.json
 }
 
-namespace shaderlab::cli {
+namespace shaderlab::authoring {
 
 const std::string& corpusSchemaText() {
     static const std::string text = kCorpusSchemaJson;
@@ -131,4 +131,4 @@ std::set<std::string> expectedFailures(const LabSpec& spec, const std::vector<st
     return out;
 }
 
-}  // namespace shaderlab::cli
+}  // namespace shaderlab::authoring

@@ -1,13 +1,13 @@
 // How well each candidate scene separates each goal's mistakes from the alternatives; see
 // scene_sweep_score.h.
-#include "scene_sweep_score.h"
+#include "shaderlab/authoring/scene_sweep_score.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-namespace shaderlab::cli::sweep {
+namespace shaderlab::authoring::sweep {
 
 namespace {
 
@@ -278,4 +278,4 @@ ojson rankingJson(const std::vector<Candidate>& candidates, const std::vector<Va
     return out;
 }
 
-}  // namespace shaderlab::cli::sweep
+}  // namespace shaderlab::authoring::sweep

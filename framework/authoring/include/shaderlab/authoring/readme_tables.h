@@ -10,10 +10,11 @@
 
 #include "shaderlab/lab/lab_spec.h"
 
-namespace shaderlab::cli {
+namespace shaderlab::authoring {
 
-// | goal | points | seen in | rests on |: one row per goal (its title and id, its points, the
-// scenes and graded passes that show it, the goals it depends_on), then the total.
+// | goal | your work | points | seen in |: one row per goal (its title and id, the student's work
+// it is judged on, its points, the scenes and graded passes that show it), then the total; a
+// "rests on" column (the goals it depends_on) in a lab where some goal has any.
 std::string goalsTable(const LabSpec& spec);
 // | scene | mesh | goals judging it | passes graded |: one row per scene (each time of a scene
 // with `times`).
@@ -48,4 +49,4 @@ std::string courseIndexRow(const LabSpec& spec);
 bool insertCourseIndexRow(const std::string& index, const std::string& id, const std::string& row,
                           std::string* out);
 
-}  // namespace shaderlab::cli
+}  // namespace shaderlab::authoring

@@ -1,5 +1,5 @@
 // The variations of a scene and the candidates they make; see scene_sweep.h.
-#include "scene_sweep.h"
+#include "shaderlab/authoring/scene_sweep.h"
 
 #include <algorithm>
 #include <cctype>
@@ -8,7 +8,7 @@
 #include "shaderlab/base/json_messages.h"
 #include "shaderlab/base/paths.h"
 
-namespace shaderlab::cli::sweep {
+namespace shaderlab::authoring::sweep {
 
 namespace {
 
@@ -477,4 +477,4 @@ bool makeCandidates(const ojson& base, const std::vector<Variation>& vary, const
     return true;
 }
 
-}  // namespace shaderlab::cli::sweep
+}  // namespace shaderlab::authoring::sweep

@@ -14,7 +14,7 @@
 
 #include "shaderlab/lab/lab_spec.h"
 
-namespace shaderlab::cli {
+namespace shaderlab::authoring {
 
 struct Case {
     std::string name, kind, about, status;
@@ -43,4 +43,4 @@ bool materialise(const LabSpec& spec, const std::filesystem::path& reference_lab
 // (depends_on, followed through), since such a goal is not met because of it.
 std::set<std::string> expectedFailures(const LabSpec& spec, const std::vector<std::string>& fails);
 
-}  // namespace shaderlab::cli
+}  // namespace shaderlab::authoring

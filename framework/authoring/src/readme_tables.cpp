@@ -1,12 +1,12 @@
-// A lab's generated markdown; see lab_readme_tables.h.
-#include "lab_readme_tables.h"
+// A lab's generated markdown; see readme_tables.h.
+#include "shaderlab/authoring/readme_tables.h"
 
 #include <algorithm>
 #include <set>
 
 #include "shaderlab/base/json_messages.h"
 
-namespace shaderlab::cli {
+namespace shaderlab::authoring {
 
 namespace {
 
@@ -91,12 +91,28 @@ std::string indexRowId(const std::string& line) {
 
 }  // namespace
 
+// "`diffuse` in phong.frag, bright.frag": a goal's work; "the whole shaders" without any.
+std::string workOf(const GoalSpec& g) {
+    std::string out;
+    for (const GoalWork& w : g.work)
+        out +=
+            (out.empty() ? "" : ", ") + (w.function.empty() ? w.file : "`" + w.function + "` in " + w.file);
+    return out.empty() ? "the whole shaders" : out;
+}
+
 std::string goalsTable(const LabSpec& spec) {
-    std::string out = "| goal | points | seen in | rests on |\n|---|---|---|---|\n";
-    for (const GoalSpec& g : spec.goals)
-        out += "| " + cell(g.title) + " (`" + g.id + "`) | " + formatNumber(g.points) + " | " +
-               seenIn(spec, g) + (g.depends_on.empty() ? " | |\n" : " | " + codeList(g.depends_on) + " |\n");
-    out += "| **total** | **" + formatNumber(spec.grading.points) + "** | | |\n";
+    // "rests on" only in a lab where some goal rests on another (goals without work of their own).
+    const bool rests = std::any_of(spec.goals.begin(), spec.goals.end(),
+                                   [](const GoalSpec& g) { return !g.depends_on.empty(); });
+    std::string out = rests ? "| goal | your work | points | seen in | rests on |\n|---|---|---|---|---|\n"
+                            : "| goal | your work | points | seen in |\n|---|---|---|---|\n";
+    for (const GoalSpec& g : spec.goals) {
+        out += "| " + cell(g.title) + " (`" + g.id + "`) | " + workOf(g) + " | " + formatNumber(g.points) +
+               " | " + seenIn(spec, g) + " |";
+        if (rests) out += g.depends_on.empty() ? " |" : " " + codeList(g.depends_on) + " |";
+        out += "\n";
+    }
+    out += "| **total** | | **" + formatNumber(spec.grading.points) + "** | |" + (rests ? " |\n" : "\n");
     return out;
 }
 
@@ -226,4 +242,4 @@ bool insertCourseIndexRow(const std::string& index, const std::string& id, const
     return true;
 }
 
-}  // namespace shaderlab::cli
+}  // namespace shaderlab::authoring
