@@ -2,7 +2,8 @@
 // 07-environment-mapping, the object's fragment stage: an object lit only by its environment.
 //   colour = k_d * albedo * E(n)/pi  +  k_r * sky(reflected ray)  +  k_t * sky(refracted ray)
 // Each scene turns on one term (k_d, k_r, k_t are set per scene in lab.json).
-// Read labs/07-environment-mapping/README.md first.
+// Read labs/07-environment-mapping/README.md first. Each function below is one idea of the lab and
+// is graded on its own: keep their names and parameters (README, "How it is graded").
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -20,23 +21,37 @@ uniform float u_ior;         // index of refraction of the object (the outside i
 
 out vec4 o_color;
 
+// The sky seen in a mirror at a point with the unit normal n. `incident` is the ray from the eye
+// to the point, of any length.
+vec3 reflectedSky(vec3 incident, vec3 n) {
+    // TODO(student): the mirror direction with reflect(), then the sky seen along it. Which way
+    // must reflect()'s first argument point?
+    return vec3(0.0);
+}
+
+// The sky seen through glass at a point with the unit normal n, the ray entering from the air.
+// `incident` is the ray from the eye to the point, of any length.
+vec3 refractedSky(vec3 incident, vec3 n) {
+    // TODO(student): the refracted direction with refract(), then the sky seen along it. Its third
+    // argument is the ratio of the indices of refraction on the two sides: which one over which?
+    // And what does refract() assume about the length of its first argument?
+    return vec3(0.0);
+}
+
+// The light a matte surface of this albedo with the unit normal n sends out: the albedo times
+// E/pi from the irradiance map.
+vec3 diffuseLight(vec3 n, vec3 albedo) {
+    // TODO(student): look the irradiance map up by...?
+    return albedo;
+}
+
 void main() {
     // TODO(student): the interpolated normal is no longer unit length. Fix that.
     vec3 n = v_world_normal;
+    // TODO(student): the ray from the eye to this point, world space (any length will do).
+    vec3 incident = vec3(0.0, 0.0, -1.0);
 
-    // TODO(student): the incident direction, world space. Which way must it point for
-    // reflect() and refract()?
-
-    // TODO(student): the mirror direction with reflect(), then the sky seen along it.
-    vec3 reflected = vec3(0.0);
-
-    // TODO(student): the refracted direction with refract(). Its third argument is the ratio
-    // of the indices of refraction on the two sides: which one over which?
-    vec3 refracted = vec3(0.0);
-
-    // TODO(student): the diffuse term: the albedo times the irradiance map, looked up by...?
-    vec3 diffuse = u_base_color.rgb;
-
-    vec3 color = u_diffuse * diffuse + u_reflection * reflected + u_refraction * refracted;
+    vec3 color = u_diffuse * diffuseLight(n, u_base_color.rgb) + u_reflection * reflectedSky(incident, n) +
+                 u_refraction * refractedSky(incident, n);
     o_color = vec4(color, 1.0);
 }

@@ -6,7 +6,8 @@
 //   dOmega          (the solid angle the sky texel covers: corner texels cover less than centre ones)
 // and divide by pi, so that a sky of constant radiance L gives back L:
 //   E(n) / pi = (1 / pi) * sum_texels L_k * max(n . w_k, 0) * dOmega_k
-// Read labs/07-environment-mapping/README.md first: it derives both weights.
+// Read labs/07-environment-mapping/README.md first: it derives both weights. Each function below
+// is one idea of the lab and is graded on its own: keep their names and parameters.
 
 in vec2 v_uv;  // 0..1 across the face being drawn: s = v_uv.x, t = v_uv.y
 
@@ -25,10 +26,15 @@ vec3 faceDirection(int face, float sc, float tc) {
     return vec3(0.0, 0.0, 1.0);
 }
 
-void main() {
-    // TODO(student): the direction n of this output texel, from u_cube_face and v_uv.
-    vec3 n = vec3(0.0, 0.0, 1.0);
+// The solid angle that the rectangle [u0, u1] x [v0, v1] of a face (the face being the square
+// [-1, 1]^2 at distance 1 from the centre) covers, seen from the cube's centre.
+float texelSolidAngle(float u0, float v0, float u1, float v1) {
+    // TODO(student): see "The solid angle of a cube-map texel" in the README.
+    return 0.0;
+}
 
+// E(n) / pi for the unit direction n.
+vec3 irradiance(vec3 n) {
     vec3 sum = vec3(0.0);
     const float texel_size = 2.0 / float(kSkySize);
     for (int face = 0; face < 6; ++face) {
@@ -45,5 +51,11 @@ void main() {
         }
     }
     // TODO(student): normalise so that a constant sky gives back its constant.
-    o_color = vec4(sum, 1.0);
+    return sum;
+}
+
+void main() {
+    // TODO(student): the direction n of this output texel, from u_cube_face and v_uv.
+    vec3 n = vec3(0.0, 0.0, 1.0);
+    o_color = vec4(irradiance(n), 1.0);
 }

@@ -9,6 +9,8 @@
 // grader expects.
 //
 // Look for TODO(student). Everything else (the uniforms, the lighting at the end) is provided.
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
 
 in vec3 v_world_position;
 in vec3 v_world_normal;

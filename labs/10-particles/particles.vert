@@ -3,6 +3,8 @@
 // draws {"primitive": "points", "count": 1024}: this shader runs once per particle, and
 // gl_VertexID (0..1023) says which. The state textures are 64x16 texels, one per particle, filled
 // row by row: particle id sits in column id % 64 of row id / 64.
+// This file is one goal of the lab, graded on its own with the reference's particles.frag (README,
+// "How it is graded"): keep the output v_color as it is.
 // (lab.json's scenes also set u_spawn_min, u_spawn_max, u_velocity_mean, u_velocity_spread,
 // u_gravity, u_attraction, u_restitution for the init and step passes; they are named here only
 // because the framework warns about a scene uniform that a pass's shaders never mention.)

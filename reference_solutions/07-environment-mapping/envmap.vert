@@ -12,10 +12,13 @@ uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model)))
 out vec3 v_world_position;
 out vec3 v_world_normal;
 
+// The inverse transpose keeps normals perpendicular to the surface under non-uniform scale
+// (Turkowski, "Properties of Surface-Normal Transformations", Graphics Gems, 1990).
+vec3 worldNormal(vec3 normal) { return u_normal_matrix * normal; }
+
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world_position = world.xyz;
-    // The inverse transpose keeps normals perpendicular to the surface under non-uniform scale.
-    v_world_normal = u_normal_matrix * a_normal;
+    v_world_normal = worldNormal(a_normal);
     gl_Position = u_view_projection * world;
 }

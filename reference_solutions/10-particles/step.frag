@@ -29,16 +29,19 @@ uniform float u_restitution;  // e
 out vec4 o_position;
 out vec4 o_velocity;
 
-void main() {
-    // This fragment's texel is this particle: gl_FragCoord is the pixel centre (i + 0.5, j + 0.5).
-    ivec2 texel = ivec2(gl_FragCoord.xy);
-    vec3 x = texelFetch(u_state_position, texel, 0).xyz;
-    vec3 v = texelFetch(u_state_velocity, texel, 0).xyz;
+// The acceleration per unit mass of a particle at x: gravity plus the spring to the attractor.
+vec3 acceleration(vec3 x) { return u_gravity + u_attraction * (u_attractor - x); }
 
-    vec3 a = u_gravity + u_attraction * (u_attractor - x);
+// One step of semi-implicit Euler: the new velocity first, then the position moved with it.
+void eulerStep(inout vec3 x, inout vec3 v) {
+    vec3 a = acceleration(x);
     v = v + u_dt * a;
     x = x + u_dt * v;
+}
 
+// The walls of the box [0, 1]^3: each coordinate that left it is put back on its wall, and that
+// component of the velocity (the one across the wall) is reflected and damped; the others slide on.
+void walls(inout vec3 x, inout vec3 v) {
     for (int i = 0; i < 3; ++i) {
         if (x[i] < 0.0) {
             x[i] = 0.0;
@@ -48,7 +51,19 @@ void main() {
             v[i] = -u_restitution * v[i];
         }
     }
+}
 
+void main() {
+    // This fragment's texel is this particle: gl_FragCoord is the pixel centre (i + 0.5, j + 0.5).
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    vec3 x = texelFetch(u_state_position, texel, 0).xyz;
+    vec3 v = texelFetch(u_state_velocity, texel, 0).xyz;
+
+    eulerStep(x, v);
+    // The walls test where the step took the particle, so that no particle is stored outside.
+    walls(x, v);
+
+    // Both attachments: an output left unwritten would keep its old state.
     o_position = vec4(x, 1.0);
     o_velocity = vec4(v, 1.0);
 }

@@ -22,18 +22,34 @@ uniform float u_ior;         // index of refraction of the object (the outside i
 
 out vec4 o_color;
 
+// The sky seen in a mirror: the ray from the eye (incident, any length) reflected about the unit
+// normal n. reflect() is linear in its first argument and a cube map ignores a direction's length,
+// so the normalisation is for clarity only here.
+vec3 reflectedSky(vec3 incident, vec3 n) {
+    vec3 r = reflect(normalize(incident), n);
+    return texture(u_sky, r).rgb;
+}
+
+// The sky seen through glass: the ray from the eye bent by Snell's law, with eta = n_outside /
+// n_inside (from air into the object). refract() needs a unit incident vector: its formula uses
+// n.i as the cosine of the angle of incidence.
+vec3 refractedSky(vec3 incident, vec3 n) {
+    // glass has an index of refraction of 1.5
+    vec3 t = refract(normalize(incident), n, u_ior);
+    return texture(u_sky, t).rgb;
+}
+
+// A matte surface: the albedo times the irradiance map, looked up by the normal, because the light
+// it receives does not depend on where the viewer is.
+vec3 diffuseLight(vec3 n, vec3 albedo) { return albedo * texture(u_irradiance, n).rgb; }
+
 void main() {
     // Interpolation shortens normals: renormalise per fragment.
     vec3 n = normalize(v_world_normal);
-    // The incident direction travels from the eye toward the surface, as reflect() and refract()
-    // expect.
-    vec3 incident = normalize(v_world_position - u_camera_position);
+    // The incident ray travels from the eye toward the surface, as reflect() and refract() expect.
+    vec3 incident = v_world_position - u_camera_position;
 
-    vec3 r = reflect(incident, n);
-    // glass has an index of refraction of 1.5
-    vec3 t = refract(incident, n, u_ior);
-
-    vec3 diffuse = u_base_color.rgb * texture(u_irradiance, n).rgb;
-    vec3 color = u_diffuse * diffuse + u_reflection * texture(u_sky, r).rgb + u_refraction * texture(u_sky, t).rgb;
+    vec3 color = u_diffuse * diffuseLight(n, u_base_color.rgb) + u_reflection * reflectedSky(incident, n) +
+                 u_refraction * refractedSky(incident, n);
     o_color = vec4(color, 1.0);
 }

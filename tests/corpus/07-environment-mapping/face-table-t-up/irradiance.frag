@@ -34,9 +34,16 @@ vec3 faceDirection(int face, float sc, float tc) {
 // distance 1): the integral of dA / (1 + u^2 + v^2)^(3/2), which is atan(u v / sqrt(1 + u^2 + v^2)).
 float cornerSolidAngle(float u, float v) { return atan(u * v, sqrt(1.0 + u * u + v * v)); }
 
-void main() {
-    vec3 n = normalize(faceDirection(u_cube_face, 2.0 * v_uv.x - 1.0, 2.0 * v_uv.y - 1.0));
+// The solid angle a face rectangle [u0, u1] x [v0, v1] covers, exactly: inclusion-exclusion of the
+// four rectangles from the face's centre to its corners.
+float texelSolidAngle(float u0, float v0, float u1, float v1) {
+    return cornerSolidAngle(u1, v1) - cornerSolidAngle(u0, v1) - cornerSolidAngle(u1, v0) +
+           cornerSolidAngle(u0, v0);
+}
 
+// E(n) / pi for the unit direction n: every texel of the small sky, weighted by Lambert's cosine
+// and by the solid angle it covers.
+vec3 irradiance(vec3 n) {
     vec3 sum = vec3(0.0);
     const float step = 2.0 / float(kSkySize);
     for (int face = 0; face < 6; ++face) {
@@ -44,9 +51,7 @@ void main() {
             for (int i = 0; i < kSkySize; ++i) {
                 float u0 = float(i) * step - 1.0, u1 = u0 + step;
                 float v0 = float(j) * step - 1.0, v1 = v0 + step;
-                // The texel's exact solid angle, by inclusion-exclusion of four corner rectangles.
-                float solid_angle = cornerSolidAngle(u1, v1) - cornerSolidAngle(u0, v1) -
-                                    cornerSolidAngle(u1, v0) + cornerSolidAngle(u0, v0);
+                float solid_angle = texelSolidAngle(u0, v0, u1, v1);
                 // Sampling at the texel centre with nearest filtering reads exactly that texel.
                 vec3 w = faceDirection(face, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
                 vec3 radiance = texture(u_sky_small, w).rgb;
@@ -55,5 +60,11 @@ void main() {
             }
         }
     }
-    o_color = vec4(sum / kPi, 1.0);
+    return sum / kPi;
+}
+
+void main() {
+    // This texel's direction: its face coordinates, from 0..1 to -1..1, through the face table.
+    vec3 n = normalize(faceDirection(u_cube_face, 2.0 * v_uv.x - 1.0, 2.0 * v_uv.y - 1.0));
+    o_color = vec4(irradiance(n), 1.0);
 }

@@ -11,10 +11,12 @@ uniform mat4 u_view_projection;
 out vec3 v_world_position;
 out vec3 v_world_normal;
 
+// normals go to world space with the model matrix, like the positions (no translation)
+vec3 worldNormal(vec3 normal) { return mat3(u_model) * normal; }
+
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world_position = world.xyz;
-    // normals go to world space with the model matrix, like the positions (no translation)
-    v_world_normal = mat3(u_model) * a_normal;
+    v_world_normal = worldNormal(a_normal);
     gl_Position = u_view_projection * world;
 }

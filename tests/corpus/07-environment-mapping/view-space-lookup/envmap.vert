@@ -12,10 +12,12 @@ uniform mat3 u_normal_matrix;
 out vec3 v_view_position;
 out vec3 v_view_normal;
 
+vec3 worldNormal(vec3 normal) { return u_normal_matrix * normal; }
+
 void main() {
     vec4 eye = u_model_view * vec4(a_position, 1.0);
     v_view_position = eye.xyz;
     // normal matrix (to world), then the view's rotation (to eye space)
-    v_view_normal = mat3(u_view) * (u_normal_matrix * a_normal);
+    v_view_normal = mat3(u_view) * worldNormal(a_normal);
     gl_Position = u_projection * eye;
 }

@@ -19,16 +19,23 @@ uniform float u_ior;
 
 out vec4 o_color;
 
+// Eye-space directions back to world space, for the lookups.
+vec3 toWorld(vec3 d) { return transpose(mat3(u_view)) * d; }
+
+vec3 reflectedSky(vec3 incident, vec3 n) {
+    return texture(u_sky, toWorld(reflect(normalize(incident), n))).rgb;
+}
+
+vec3 refractedSky(vec3 incident, vec3 n) {
+    return texture(u_sky, toWorld(refract(normalize(incident), n, 1.0 / u_ior))).rgb;
+}
+
+vec3 diffuseLight(vec3 n, vec3 albedo) { return albedo * texture(u_irradiance, toWorld(n)).rgb; }
+
 void main() {
-    mat3 eye_to_world = transpose(mat3(u_view));
     vec3 n = normalize(v_view_normal);
-    vec3 incident = normalize(v_view_position);
-
-    vec3 r = eye_to_world * reflect(incident, n);
-    vec3 t = eye_to_world * refract(incident, n, 1.0 / u_ior);
-    vec3 n_world = eye_to_world * n;
-
-    vec3 color = u_diffuse * u_base_color.rgb * texture(u_irradiance, n_world).rgb +
-                 u_reflection * texture(u_sky, r).rgb + u_refraction * texture(u_sky, t).rgb;
+    vec3 incident = v_view_position;  // from the eye (origin) to the fragment
+    vec3 color = u_diffuse * diffuseLight(n, u_base_color.rgb) + u_reflection * reflectedSky(incident, n) +
+                 u_refraction * refractedSky(incident, n);
     o_color = vec4(color, 1.0);
 }

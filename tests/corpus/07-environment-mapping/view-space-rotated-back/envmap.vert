@@ -12,11 +12,13 @@ uniform mat3 u_normal_matrix;  // object to world, for normals
 out vec3 v_view_position;
 out vec3 v_view_normal;
 
+vec3 worldNormal(vec3 normal) { return u_normal_matrix * normal; }
+
 void main() {
     vec4 eye = u_model_view * vec4(a_position, 1.0);
     v_view_position = eye.xyz;
     // To world with the normal matrix, then into eye space with the view's rotation (the view is
     // a rigid motion, so its rotation part transforms normals too).
-    v_view_normal = mat3(u_view) * (u_normal_matrix * a_normal);
+    v_view_normal = mat3(u_view) * worldNormal(a_normal);
     gl_Position = u_projection * eye;
 }

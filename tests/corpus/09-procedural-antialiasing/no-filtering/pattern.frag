@@ -43,12 +43,10 @@ float checker(vec2 p) {
 
 // ---- Task 2: the same patterns, averaged over the pixel's footprint -----------------------------
 
-// The integral of stripes() from 0 to x.
+// The integral of stripes() from 0 to x: half a period of light per whole period, plus what the
+// current period has had since fract(x) passed 0.5.
 float stripes_integral(float x) {
-    // TODO(student): every whole period contributes 1/2; inside the current period the stripe has
-    // been 1 for as long as fract(x) has been above 0.5. See "Integrate, then subtract" in the
-    // README.
-    return 0.0;
+    return 0.5 * floor(x) + max(fract(x) - 0.5, 0.0);
 }
 
 // The average of stripes() over [x - w/2, x + w/2]: a box filter of width w.

@@ -7,10 +7,16 @@
 //
 // Forces (per unit mass):   a(x) = g + k (c - x)        (gravity plus a spring to the attractor c)
 // Walls: the box [0, 1]^3 (see README.md for the exact rule).
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
 // (lab.json's scenes also set u_spawn_min, u_spawn_max, u_velocity_mean, u_velocity_spread for
 // init.frag and u_point_size, u_intensity, u_slow_color, u_fast_color, u_max_speed for the draw
 // pass; they are named here only because the framework warns about a scene uniform that a pass's
 // shaders never mention.)
+
+// No `in vec2 v_uv;` here: texelFetch at ivec2(gl_FragCoord.xy) needs no texture coordinate, and
+// the grader warns about an input a shader never reads. If you would rather sample with
+// texture(u, v_uv) (shared/fullscreen.vert hands v_uv on, at this texel's centre), declare it.
 
 uniform sampler2D u_state_position;  // xyz: position, w: 1 (unused)
 uniform sampler2D u_state_velocity;  // xyz: velocity, w: 1 (unused)
@@ -24,27 +30,32 @@ uniform float u_restitution;  // e
 out vec4 o_position;
 out vec4 o_velocity;
 
-void main() {
-    ivec2 texel = ivec2(gl_FragCoord.xy);  // pixel centre (i + 0.5, j + 0.5) -> texel (i, j)
-    vec3 x = texelFetch(u_state_position, texel, 0).xyz;
-    vec3 v = texelFetch(u_state_velocity, texel, 0).xyz;
+// The acceleration per unit mass of a particle at x: gravity plus the spring to the attractor.
+vec3 acceleration(vec3 x) { return u_gravity + u_attraction * u_attractor - u_attraction * x; }
 
-    // v' = v + h a, and x' = x + h v' = x + h v + h (h a): the same step, expanded.
-    vec3 a = u_gravity + u_attraction * u_attractor - u_attraction * x;
-    vec3 dv = u_dt * a;
+// v' = v + h a, and x' = x + h v' = x + h v + h (h a): the same step, expanded.
+void eulerStep(inout vec3 x, inout vec3 v) {
+    vec3 dv = u_dt * acceleration(x);
     x += u_dt * v + u_dt * dv;
     v += dv;
+}
 
-    for (int i = 0; i < 3; ++i) {
-        if (x[i] < 0.0) {
-            x[i] = 0.0;
-            v[i] = -u_restitution * v[i];
-        } else if (x[i] > 1.0) {
-            x[i] = 1.0;
-            v[i] = -u_restitution * v[i];
+// A coordinate outside [0, 1] goes back onto its wall, and its velocity turns round, damped.
+void walls(inout vec3 x, inout vec3 v) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (x[axis] < 0.0 || x[axis] > 1.0) {
+            x[axis] = clamp(x[axis], 0.0, 1.0);
+            v[axis] *= -u_restitution;
         }
     }
+}
 
-    o_position = vec4(x, 1.0);
-    o_velocity = vec4(v, 1.0);
+void main() {
+    ivec2 me = ivec2(gl_FragCoord.xy);  // this particle's texel
+    vec3 position = texelFetch(u_state_position, me, 0).xyz;
+    vec3 velocity = texelFetch(u_state_velocity, me, 0).xyz;
+    eulerStep(position, velocity);
+    walls(position, velocity);  // on the new position
+    o_velocity = vec4(velocity, 1.0);
+    o_position = vec4(position, 1.0);
 }

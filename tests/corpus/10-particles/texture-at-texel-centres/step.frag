@@ -7,6 +7,8 @@
 //
 // Forces (per unit mass):   a(x) = g + k (c - x)        (gravity plus a spring to the attractor c)
 // Walls: the box [0, 1]^3 (see README.md for the exact rule).
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
 // (lab.json's scenes also set u_spawn_min, u_spawn_max, u_velocity_mean, u_velocity_spread for
 // init.frag and u_point_size, u_intensity, u_slow_color, u_fast_color, u_max_speed for the draw
 // pass; they are named here only because the framework warns about a scene uniform that a pass's
@@ -26,17 +28,19 @@ uniform float u_restitution;  // e
 out vec4 o_position;
 out vec4 o_velocity;
 
-void main() {
-    // v_uv is this pixel's centre in texture coordinates: the centre of this particle's texel,
-    // since the state and this pass's target are the same size. Nearest filtering reads it.
-    vec3 x = texture(u_state_position, v_uv).xyz;
-    vec3 v = texture(u_state_velocity, v_uv).xyz;
+// The acceleration per unit mass of a particle at x: gravity plus the spring to the attractor.
+vec3 acceleration(vec3 x) { return u_gravity + u_attraction * (u_attractor - x); }
 
-    // Semi-implicit Euler: velocity first, then the position with the new velocity.
-    vec3 a = u_gravity + u_attraction * (u_attractor - x);
+// One step of semi-implicit Euler: the new velocity first, then the position moved with it.
+void eulerStep(inout vec3 x, inout vec3 v) {
+    vec3 a = acceleration(x);
     v = v + u_dt * a;
     x = x + u_dt * v;
+}
 
+// The walls of the box [0, 1]^3: each coordinate that left it is put back on its wall, and that
+// component of the velocity (the one across the wall) is reflected and damped; the others slide on.
+void walls(inout vec3 x, inout vec3 v) {
     for (int i = 0; i < 3; ++i) {
         if (x[i] < 0.0) {
             x[i] = 0.0;
@@ -46,7 +50,19 @@ void main() {
             v[i] = -u_restitution * v[i];
         }
     }
+}
 
+void main() {
+    // v_uv is this pixel's centre in texture coordinates: the centre of this particle's texel,
+    // since the state and this pass's target are the same size. Nearest filtering reads it.
+    vec3 x = texture(u_state_position, v_uv).xyz;
+    vec3 v = texture(u_state_velocity, v_uv).xyz;
+
+    eulerStep(x, v);
+    // The walls test where the step took the particle, so that no particle is stored outside.
+    walls(x, v);
+
+    // Both attachments: an output left unwritten would keep its old state.
     o_position = vec4(x, 1.0);
     o_velocity = vec4(v, 1.0);
 }
