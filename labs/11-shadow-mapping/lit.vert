@@ -2,7 +2,8 @@
 // Lab 11 (shadow mapping), passes "basic" and "pcf": the scene from the camera, with the
 // world-space position and normal the lighting and the shadow lookup need. This file is done;
 // it is yours to change if you would rather do part of the light-space projection here (for
-// example pass u_light_matrix * world on as a vec4 varying).
+// example pass u_light_matrix * world on as a vec4 varying, which shadow_coord then reads). It is
+// graded with shadow_coord, as part of the projection.
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

@@ -1,7 +1,8 @@
 #version 330 core
 // Lab 11 (shadow mapping), pass "basic": the shadow test with a sampler2D. Task 1.
 // The lighting is done for you (lighting.glsl): your part is visibility(), 1 where the first
-// light reaches the point and 0 where something nearer to the light hides it.
+// light reaches the point and 0 where something nearer to the light hides it. It is graded on its
+// own (README, "How it is graded"): keep its name and parameters.
 
 #include "lighting.glsl"
 #include "shadow_common.glsl"

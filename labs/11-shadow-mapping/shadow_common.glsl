@@ -1,6 +1,7 @@
 // Lab 11 (shadow mapping): what both lit passes need to look a point up in the shadow map.
 // shadow_basic.frag and shadow_pcf.frag both #include this file, so you write it once.
-// Read labs/11-shadow-mapping/README.md first.
+// Read labs/11-shadow-mapping/README.md first. Each function below is one idea of the lab and is
+// graded on its own: keep their names and parameters (README, "How it is graded").
 
 uniform mat4 u_light_matrix;  // the shadow pass's view-projection: world -> the light's clip space
 
@@ -12,6 +13,8 @@ vec3 shadow_coord(vec3 p) {
     // light's orthographic view w is 1 and the divide changes nothing).
     // TODO(student): map normalised device coordinates (-1..1) to texture coordinates and depth
     // (0..1).
+    // If you move part of this into lit.vert (a varying), read the varying here and keep the
+    // function's name and parameter: the shadow passes call shadow_coord(p).
     return vec3(0.0);
 }
 

@@ -1,7 +1,8 @@
 #version 330 core
 // Lab 11 (shadow mapping), pass "pcf": percentage-closer filtering with a sampler2DShadow.
 // Task 2. The lighting is done for you (lighting.glsl): your part is visibility(), the fraction
-// of a 3x3 neighbourhood of shadow-map texels whose depth test the point passes.
+// of a 3x3 neighbourhood of shadow-map texels whose depth test the point passes. It is graded on
+// its own (README, "How it is graded"): keep its name and parameters.
 
 #include "lighting.glsl"
 #include "shadow_common.glsl"

@@ -5,8 +5,9 @@
 // The glTF file stores them in object space, per vertex: a_normal, and a_tangent, whose xyz points
 // along +u (the direction the texture's x runs on the surface) and whose w is +1 or -1 (the
 // handedness: -1 where the texture is mirrored). Read README.md, "The frame", first.
+// world_normal and world_tangent are graded on their own: keep their names and parameters.
 //
-// Look for TODO(student). Position and texture coordinates are provided.
+// Look for TODO(student). Position, texture coordinates and main() are provided.
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -23,18 +24,25 @@ out vec3 v_world_normal;   // unit normal, world space
 out vec4 v_world_tangent;  // xyz: unit tangent, world space; w: the handedness, passed on as it is
 out vec2 v_texcoord;
 
+// The unit normal in world space.
+vec3 world_normal(vec3 normal) {
+    // TODO(student): which matrix keeps a normal perpendicular to the surface when the object is
+    // stretched?
+    return normal;
+}
+
+// The unit tangent in world space.
+vec3 world_tangent(vec3 tangent) {
+    // TODO(student): a tangent lies in the surface, like an edge of a triangle: which matrix moves
+    // an edge?
+    return tangent;
+}
+
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world_position = world.xyz;
     v_texcoord = a_texcoord;
-
-    // TODO(student): the normal to world space. Which matrix keeps a normal perpendicular to the
-    // surface when the object is stretched?
-    v_world_normal = a_normal;
-
-    // TODO(student): the tangent to world space. A tangent lies in the surface, like an edge of a
-    // triangle: which matrix moves an edge? Keep the handedness w as it is.
-    v_world_tangent = a_tangent;
-
+    v_world_normal = world_normal(a_normal);
+    v_world_tangent = vec4(world_tangent(a_tangent.xyz), a_tangent.w);  // w passed on as it is
     gl_Position = u_projection * u_view * world;
 }

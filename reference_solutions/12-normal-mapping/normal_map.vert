@@ -22,15 +22,23 @@ out vec3 v_world_normal;   // unit normal, world space
 out vec4 v_world_tangent;  // xyz: unit tangent, world space; w: the handedness, passed on as it is
 out vec2 v_texcoord;
 
+// The unit normal in world space. A normal stays perpendicular to the surface with the inverse
+// transpose of the model matrix.
+vec3 world_normal(vec3 normal) {
+    return normalize(u_normal_matrix * normal);
+}
+
+// The unit tangent in world space. A tangent lies in the surface, like an edge of a triangle, and
+// moves with the model matrix itself.
+vec3 world_tangent(vec3 tangent) {
+    return normalize(mat3(u_model) * tangent);
+}
+
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world_position = world.xyz;
     v_texcoord = a_texcoord;
-
-    // A normal stays perpendicular to the surface with the inverse transpose; a tangent lies in
-    // the surface, like an edge, and moves with the model matrix itself.
-    v_world_normal = normalize(u_normal_matrix * a_normal);
-    v_world_tangent = vec4(normalize(mat3(u_model) * a_tangent.xyz), a_tangent.w);
-
+    v_world_normal = world_normal(a_normal);
+    v_world_tangent = vec4(world_tangent(a_tangent.xyz), a_tangent.w);  // w passed on as it is
     gl_Position = u_projection * u_view * world;
 }

@@ -3,12 +3,14 @@
 
 uniform mat4 u_light_matrix;  // the shadow pass's view-projection: world -> the light's clip space
 
+in vec3 v_light_ndc;  // from lit.vert: the point in the light's NDC
+
 // Where the world-space point p lands in the shadow map: xy are its texture coordinates and z its
 // depth as the light's depth buffer stores it, all three in 0..1 inside the light's view.
-// The vertex shader already took the point to the light's NDC (v_light_ndc), divided by w once per
-// vertex instead of once per fragment: only the remap to 0..1 is left.
-vec3 shadow_coord(vec3 ndc) {
-    return ndc * 0.5 + 0.5;
+// lit.vert already took the point to the light's NDC (v_light_ndc), divided by w once per vertex
+// instead of once per fragment: only the remap to 0..1 is left, and p is not needed.
+vec3 shadow_coord(vec3 p) {
+    return v_light_ndc * 0.5 + 0.5;
 }
 
 // Outside the light's view the map knows nothing: treat such points as lit.

@@ -3,12 +3,14 @@
 
 uniform mat4 u_light_matrix;  // the shadow pass's view-projection: world -> the light's clip space
 
+in vec4 v_light_clip;  // from lit.vert: the point in the light's clip space
+
 // Where the world-space point p lands in the shadow map: xy are its texture coordinates and z its
 // depth as the light's depth buffer stores it, all three in 0..1 inside the light's view.
-// The vertex shader already took the point to the light's clip space (v_light_clip); the divide
-// must wait until here, per fragment: x/w does not interpolate linearly, x and w do.
-vec3 shadow_coord(vec4 light_clip) {
-    return light_clip.xyz / light_clip.w * 0.5 + 0.5;
+// lit.vert already took the point to the light's clip space (v_light_clip); the divide must wait
+// until here, per fragment: x/w does not interpolate linearly, x and w do. p is not needed.
+vec3 shadow_coord(vec3 p) {
+    return v_light_clip.xyz / v_light_clip.w * 0.5 + 0.5;
 }
 
 // Outside the light's view the map knows nothing: treat such points as lit.

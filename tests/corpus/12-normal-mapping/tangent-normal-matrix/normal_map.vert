@@ -5,8 +5,9 @@
 // The glTF file stores them in object space, per vertex: a_normal, and a_tangent, whose xyz points
 // along +u (the direction the texture's x runs on the surface) and whose w is +1 or -1 (the
 // handedness: -1 where the texture is mirrored). Read README.md, "The frame", first.
+// world_normal and world_tangent are graded on their own: keep their names and parameters.
 //
-// Look for TODO(student). Position and texture coordinates are provided.
+// Look for TODO(student). Position, texture coordinates and main() are provided.
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -23,15 +24,23 @@ out vec3 v_world_normal;   // unit normal, world space
 out vec4 v_world_tangent;  // xyz: unit tangent, world space; w: the handedness, passed on as it is
 out vec2 v_texcoord;
 
+// The unit normal in world space. A normal stays perpendicular to the surface with the inverse
+// transpose of the model matrix.
+vec3 world_normal(vec3 normal) {
+    return normalize(u_normal_matrix * normal);
+}
+
+// The unit tangent in world space. A tangent lies in the surface, like an edge of a triangle, and
+// moves with the model matrix itself.
+vec3 world_tangent(vec3 tangent) {
+    return normalize(u_normal_matrix * tangent);
+}
+
 void main() {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_world_position = world.xyz;
     v_texcoord = a_texcoord;
-
-    // A normal stays perpendicular to the surface with the inverse transpose; a tangent lies in
-    // the surface, like an edge, and moves with the model matrix itself.
-    v_world_normal = normalize(u_normal_matrix * a_normal);
-    v_world_tangent = vec4(normalize(u_normal_matrix * a_tangent.xyz), a_tangent.w);
-
+    v_world_normal = world_normal(a_normal);
+    v_world_tangent = vec4(world_tangent(a_tangent.xyz), a_tangent.w);  // w passed on as it is
     gl_Position = u_projection * u_view * world;
 }

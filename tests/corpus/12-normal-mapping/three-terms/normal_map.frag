@@ -6,6 +6,8 @@
 // Task 3: the bitangent's handedness, for the mirrored half of the meshes.
 // Task 4: light the surface with the mapped normal.
 // Read README.md first: it gives every formula and the conventions of the map and the meshes.
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
 //
 // Look for TODO(student). The debug views (u_show) and the lighting function are provided.
 
@@ -32,23 +34,35 @@ out vec4 o_color;
 
 // ---- Task 1: the map's texel to a tangent-space normal ------------------------------------------
 
-// `texel` is what texture() returns for the map, each channel in [0, 1]. Return the unit normal in
-// tangent space (x along the texture's right, y up the texture, z out of the surface), with its
-// bumps made `strength` times as steep.
-vec3 decode_normal(vec3 texel, float strength) {
-    vec3 n = texel * 2.0 - 1.0;
-    n.xy *= strength;
-    return normalize(n);
+// `texel` is what texture() returns for the map, each channel in [0, 1]. Return the unit normal it
+// stores, in tangent space: x along the texture's right, y up the texture, z out of the surface.
+vec3 decode_normal(vec3 texel) {
+    return normalize(texel * 2.0 - 1.0);
 }
 
-// ---- Tasks 2 and 3: tangent space to world space ------------------------------------------------
+// The unit tangent-space normal n with its bumps made `strength` times as steep (0: flat, 1: as the
+// map was made), as a unit vector.
+vec3 scale_bumps(vec3 n, float strength) {
+    return normalize(vec3(n.xy * strength, n.z));  // the slope is in x and y
+}
+
+// ---- Task 3: the bitangent, with the handedness (to_world, below, calls it) ---------------------
+
+// The unit bitangent B, up the image on the surface, from the unit normal n, the unit tangent t
+// perpendicular to it (along the image's right) and the handedness w: -1 where the texture is
+// mirrored, +1 elsewhere.
+vec3 bitangent(vec3 n, vec3 t, float w) {
+    return cross(n, t) * w;  // cross(n, t) alone points down the image where t is mirrored
+}
+
+// ---- Task 2: tangent space to world space -------------------------------------------------------
 
 // Turn a tangent-space direction into world space with the frame of this fragment: tangent T,
 // bitangent B and normal N, in world space.
 vec3 to_world(vec3 n_tangent) {
     vec3 n = normalize(v_world_normal);
     vec3 t = normalize(v_world_tangent.xyz - n * dot(n, v_world_tangent.xyz));  // Gram-Schmidt
-    vec3 b = cross(n, t) * v_world_tangent.w;
+    vec3 b = bitangent(n, t, v_world_tangent.w);
     return normalize(t * n_tangent.x + b * n_tangent.y + n * n_tangent.z);
 }
 
@@ -69,7 +83,7 @@ vec3 shade(vec3 n, vec3 p) {
 }
 
 void main() {
-    vec3 n_tangent = decode_normal(texture(u_normal_map, v_texcoord).rgb, u_normal_strength);
+    vec3 n_tangent = scale_bumps(decode_normal(texture(u_normal_map, v_texcoord).rgb), u_normal_strength);
     if (u_show == 1) {  // the decoded normal as a colour: the map itself, when decoded right
         o_color = vec4(n_tangent * 0.5 + 0.5, 1.0);
         return;

@@ -11,17 +11,13 @@
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
-in vec4 v_light_clip;
 
 uniform sampler2DShadow u_shadow_map;  // the light's depth buffer, compared by the hardware
 
 out vec4 o_color;
 
-float visibility(vec3 n, vec3 l) {
-    vec3 coord = shadow_coord(v_light_clip);
-    if (outside_shadow_map(coord)) {
-        return 1.0;
-    }
+float visibility(vec3 p, vec3 n, vec3 l) {
+    vec3 coord = shadow_coord(p);
     float z = coord.z - shadow_bias(n, l);
     vec2 texel = 1.0 / vec2(textureSize(u_shadow_map, 0));
     float lit = 0.0;
@@ -36,5 +32,5 @@ float visibility(vec3 n, vec3 l) {
 void main() {
     vec3 n = normalize(v_world_normal);
     vec3 l = to_light(0, v_world_position);
-    o_color = vec4(shade(v_world_position, n, visibility(n, l)), 1.0);
+    o_color = vec4(shade(v_world_position, n, visibility(v_world_position, n, l)), 1.0);
 }

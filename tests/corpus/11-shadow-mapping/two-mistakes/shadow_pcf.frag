@@ -11,14 +11,13 @@
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
-in vec3 v_light_ndc;
 
 uniform sampler2DShadow u_shadow_map;  // the light's depth buffer, compared by the hardware
 
 out vec4 o_color;
 
-float visibility(vec3 n, vec3 l) {
-    vec3 coord = shadow_coord(v_light_ndc);
+float visibility(vec3 p, vec3 n, vec3 l) {
+    vec3 coord = shadow_coord(p);
     if (outside_shadow_map(coord)) {
         return 1.0;
     }
@@ -30,11 +29,11 @@ float visibility(vec3 n, vec3 l) {
             lit += texture(u_shadow_map, vec3(coord.xy + vec2(x, y) * texel, z));
         }
     }
-    return lit / 9.0;
+    return lit / 8.0;  // the centre and its eight neighbours
 }
 
 void main() {
     vec3 n = normalize(v_world_normal);
     vec3 l = to_light(0, v_world_position);
-    o_color = vec4(shade(v_world_position, n, visibility(n, l)), 1.0);
+    o_color = vec4(shade(v_world_position, n, visibility(v_world_position, n, l)), 1.0);
 }
