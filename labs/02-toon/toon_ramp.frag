@@ -6,7 +6,8 @@
 //   highlight: light colour * specular_ramp(t),        t = max(n.h, 0)^shininess,
 //              h = the Blinn half vector between l and v; only where n.l > 0
 //   edges:     the sum of both, times edge_ramp(max(n.v, 0))  (dark where the surface turns away)
-// Read labs/02-toon/README.md first.
+// Read labs/02-toon/README.md first. Each function below is one idea of the lab and is graded on
+// its own: keep their names and parameters (README, "How it is graded").
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -29,24 +30,42 @@ uniform float u_edge;       // 1: darken silhouettes; 0: don't (mix(1.0, edge, u
 
 out vec4 o_color;
 
+// One light's diffuse term before the light's colour: the base colour times the diffuse ramp,
+// looked up at s, n.l remapped from [-1, 1] to [0, 1].
+vec3 rampDiffuse(vec3 n, vec3 l, vec3 base_color) {
+    // TODO(student): s, then base_color * texture(u_ramp, s).rgb.
+    // For now: half the base colour, so you can see the shapes.
+    return 0.5 * base_color;
+}
+
+// One light's hard highlight before the light's colour: the specular ramp (.r) at
+// t = max(n.h, 0)^u_shininess, h the Blinn half vector between l and v; 0 where n.l <= 0.
+float toonHighlight(vec3 n, vec3 l, vec3 v) {
+    // TODO(student)
+    return 0.0;
+}
+
+// The silhouette factor the colour is multiplied by: the edge ramp (.r) at max(n.v, 0).
+float silhouette(vec3 n, vec3 v) {
+    // TODO(student)
+    return 1.0;
+}
+
 void main() {
     // TODO(student): unit normal, and v, the unit vector from the fragment toward the eye.
     vec3 n = v_world_normal;
+    vec3 v = vec3(0.0, 0.0, 1.0);
 
     vec3 color = vec3(0.0);
     for (int i = 0; i < u_light_count; ++i) {
         // TODO(student): l toward light i (as in toon_steps.frag).
+        vec3 l = vec3(0.0, 1.0, 0.0);
 
-        // TODO(student): the ramp coordinate s from n.l, and
-        //   color += u_diffuse * light colour * base colour * texture(u_ramp, s).rgb;
-        // For now: flat base colour, so you can see the shapes.
-        color += u_diffuse * u_light_color[i] * u_base_color.rgb * 0.5;
-
-        // TODO(student): where n.l > 0, the half vector h, t = max(n.h, 0)^u_shininess, and
-        //   color += u_specular * light colour * texture(u_specular_ramp, t).r;
+        // TODO(student): add the highlight too, u_specular * toonHighlight(n, l, v), in the light's colour.
+        color += u_light_color[i] * u_diffuse * rampDiffuse(n, l, u_base_color.rgb);
     }
 
-    // TODO(student): edge = the edge ramp at max(n.v, 0); color *= mix(1.0, edge, u_edge);
+    // TODO(student): darken the silhouettes: color *= mix(1.0, silhouette(n, v), u_edge);
 
     o_color = vec4(color, 1.0);
 }

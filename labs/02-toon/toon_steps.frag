@@ -5,7 +5,8 @@
 //   k    = min(floor(d * L), L - 1)         which of the L equal bands d falls in: 0 .. L-1
 //   tone = k / (L - 1)                      0 (shadow) .. 1 (full light), evenly spaced
 //   colour = base colour * (u_ambient + sum over lights of light colour * tone)
-// Read labs/02-toon/README.md first: it explains why, and what goes wrong.
+// Read labs/02-toon/README.md first: it explains why, and what goes wrong. The function and main
+// are graded each on its own: keep bandTone's name and parameters (README, "How it is graded").
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -20,6 +21,14 @@ uniform float u_ambient;  // light every point gets, lit or not
 
 out vec4 o_color;
 
+// The tone of one light: its Lambert term d = max(n.l, 0) quantised into `levels` equal bands,
+// 0 for the lowest band and 1 for the highest.
+float bandTone(float n_dot_l, int levels) {
+    // TODO(student): d, its band index k (floor, or a chain of if/else on d), and k / (levels - 1).
+    // Mind d = 1 exactly.
+    return 0.0;
+}
+
 void main() {
     // TODO(student): the interpolated normal is no longer unit length. Fix that.
     vec3 n = v_world_normal;
@@ -29,10 +38,7 @@ void main() {
         // TODO(student): l, the unit vector from the fragment toward light i. One expression
         // serves point lights (w = 1) and directional lights (w = 0).
 
-        // TODO(student): the Lambert term d = max(n.l, 0), then its tone: the band index k
-        // (floor, or a chain of if/else on d) and tone = k / (L - 1). Mind d = 1 exactly.
-
-        // TODO(student): light += light colour * tone.
+        // TODO(student): light += light colour * the tone bandTone gives for n.l.
     }
 
     o_color = vec4(u_base_color.rgb * light, 1.0);

@@ -5,7 +5,8 @@
 // FRONT faces culled (lab.json). If every vertex is pushed out along its normal, the back faces
 // of this slightly larger shell peek out around the object: that rim is the outline. Read
 // labs/03-cel-outline/README.md first: it explains why the push is done in clip space and why
-// it is multiplied by w.
+// it is multiplied by w. The two functions and main are graded each on its own: keep the
+// functions' names and parameters (README, "How it is graded").
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -18,21 +19,30 @@ uniform vec2 u_resolution;     // target size in pixels
 
 uniform float u_outline_width;  // the outline's width in PIXELS (4 in most scenes; some set others)
 
+// The normal in view space.
+vec3 viewNormal(vec3 normal) {
+    // TODO(student): which matrix keeps a normal perpendicular to the surface when the object is
+    // scaled more along one axis than another (the "nonuniform_scale" scene)? The framework gives
+    // you the object-to-world one; the view matrix does the rest.
+    return normal;
+}
+
+// The normal's direction on the screen: a unit vector measured in pixels, or (0, 0) where the
+// normal points straight at (or away from) the eye.
+vec2 screenDirection(vec3 n_view) {
+    // TODO(student): apply the projection to the normal as a direction (w = 0), keep x and y, and
+    // turn it into a unit vector measured in pixels. Guard against a normal that points straight
+    // at (or away from) the eye: its x and y are 0, and such a vertex is not on the silhouette
+    // anyway (the README suggests fading the direction out there).
+    return vec2(0.0);
+}
+
 void main() {
     vec4 clip = u_model_view_projection * vec4(a_position, 1.0);
+    vec2 dir = screenDirection(viewNormal(a_normal));
 
-    // TODO(student): the normal in view space. Which matrix keeps a normal perpendicular to the
-    // surface when the object is scaled more along one axis than another (the
-    // "nonuniform_scale" scene)? The framework gives you the object-to-world one.
-
-    // TODO(student): the normal's direction on the screen: apply the projection to the normal
-    // as a direction (w = 0), keep x and y, and turn it into a unit vector measured in pixels.
-    // Guard against a normal that points straight at (or away from) the eye: its x and y are 0,
-    // and such a vertex is not on the silhouette anyway (the README suggests fading the push out
-    // there).
-
-    // TODO(student): move clip.xy by u_outline_width pixels along that direction. NDC runs from
-    // -1 to 1 across u_resolution pixels, and the rasteriser will divide clip.xy by clip.w.
+    // TODO(student): move clip.xy by u_outline_width pixels along dir. NDC runs from -1 to 1
+    // across u_resolution pixels, and the rasteriser will divide clip.xy by clip.w.
 
     gl_Position = clip;
 }

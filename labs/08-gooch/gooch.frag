@@ -3,7 +3,8 @@
 // attachments of the target "gooch" at once (multiple render targets, MRT):
 //   o_color  -> gooch.color   the illustration's colour
 //   o_normal -> gooch.normal  the surface normal, which pass 2 (lines.frag) reads to find creases
-// Read labs/08-gooch/README.md first: it derives every formula below.
+// Read labs/08-gooch/README.md first: it derives every formula below. Each function is one idea
+// of the lab and is graded on its own: keep their names and parameters (README, "How it is graded").
 // (u_silhouettes, u_creases, u_depth_threshold, u_crease_threshold and u_line_color in lab.json
 // belong to pass 2, lines.frag.)
 
@@ -24,26 +25,41 @@ uniform float u_shininess;  // the Phong exponent
 out vec4 o_color;   // attachment "color"
 out vec4 o_normal;  // attachment "normal"
 
+// The Gooch tone at a point with unit normal n, l the unit vector toward the light and k_d the
+// object's own colour: the cool colour where the surface faces away from the light, the warm one
+// where it faces it.
+vec3 goochTone(vec3 n, vec3 l, vec3 k_d) {
+    // TODO(student): build k_cool and k_warm from the undertones and k_d, turn n.l into a blend
+    // weight in 0..1 that is 1 where the surface faces the light, and blend: the WARM colour
+    // faces the light. (The whole range of n.l, -1..1, must show, not only the lit half.)
+    return k_d;
+}
+
+// The white Phong highlight k_s * max(r.v, 0)^shininess, as a colour, with r the direction toward
+// the light mirrored about n and v the unit vector toward the eye; black where the light is behind
+// the surface (n.l <= 0).
+vec3 whiteHighlight(vec3 n, vec3 l, vec3 v) {
+    // TODO(student)
+    return vec3(0.0);
+}
+
+// The unit normal n as o_normal stores it, for pass 2 (lines.frag decodes it in normal_at).
+vec4 encodeNormal(vec3 n) {
+    // TODO(student): the target is rgba8: it stores each channel as 8 bits in 0..1, so a negative
+    // component would come back as 0. Encode n into 0..1.
+    return vec4(0.5, 0.5, 1.0, 1.0);
+}
+
 void main() {
     vec3 n = normalize(v_world_normal);
     // Gooch shading uses ONE light: the first. Its colour and any other light are ignored.
     vec4 light = u_light_position[0];
     vec3 l = normalize(light.xyz - v_world_position * light.w);
-    vec3 k_d = u_base_color.rgb;
+    // TODO(student): v, the unit vector from the surface toward the eye, for the highlight.
 
-    // TODO(student): the tone. Build k_cool and k_warm from the undertones and k_d, turn n.l into
-    // a blend weight in 0..1 that is 1 where the surface faces the light, and blend: the WARM
-    // colour faces the light. (The whole range of n.l, -1..1, must show, not only the lit half.)
-    vec3 color = k_d;
-
-    // TODO(student): the highlight. Add a WHITE Phong highlight k_s * max(r.v, 0)^shininess, with
-    // r the direction toward the light mirrored about n, and only where the light is in front of
-    // the surface (n.l > 0).
+    vec3 color = goochTone(n, l, u_base_color.rgb);
+    // TODO(student): add the white highlight.
 
     o_color = vec4(color, 1.0);
-
-    // TODO(student): write the unit normal for pass 2. The target is rgba8: it stores each channel
-    // as 8 bits in 0..1, so a negative component would come back as 0. Encode it into 0..1 (and
-    // decode it the same way in lines.frag).
-    o_normal = vec4(0.5, 0.5, 1.0, 1.0);
+    o_normal = encodeNormal(n);
 }

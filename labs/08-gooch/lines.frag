@@ -4,7 +4,8 @@
 // where that pixel is in the textures of pass 1 (0..1 across the screen).
 //   silhouettes: the distance to the surface jumps between neighbouring pixels (u_depth)
 //   creases:     the surface normal turns sharply between neighbouring pixels (u_normal)
-// Read labs/08-gooch/README.md first.
+// Read labs/08-gooch/README.md first. The functions are graded on their own: keep their names and
+// parameters (README, "How it is graded").
 // (Reading texels with texelFetch at ivec2(gl_FragCoord.xy) + offset instead of uv offsets? Then
 // clamp every address to 0..textureSize(u_depth, 0) - 1: texelFetch outside the texture returns
 // undefined values. If v_uv then ends up unused, delete its declaration.)

@@ -29,6 +29,25 @@ uniform float u_edge;       // 1: silhouettes darkened, 0: not
 
 out vec4 o_color;
 
+vec3 rampDiffuse(vec3 n, vec3 l, vec3 base_color) {
+    // n.l runs over [-1, 1]; the ramp over [0, 1].
+    float s = 0.5 * dot(n, l) + 0.5;
+    return base_color * texture(u_ramp, s).rgb;
+}
+
+float toonHighlight(vec3 n, vec3 l, vec3 v) {
+    if (dot(n, l) <= 0.0) {
+        return 0.0;  // the light does not reach the point: h may still face the eye
+    }
+    vec3 h = normalize(l + v);
+    float t = pow(max(dot(n, h), 0.0), u_shininess);
+    return texture(u_specular_ramp, t).r;
+}
+
+float silhouette(vec3 n, vec3 v) {
+    return texture(u_edge_ramp, max(dot(n, v), 0.0)).r;
+}
+
 void main() {
     vec3 n = normalize(v_world_normal);
     vec3 v = normalize(u_camera_position - v_world_position);
@@ -36,17 +55,9 @@ void main() {
     for (int i = 0; i < u_light_count; ++i) {
         vec4 lp = u_light_position[i];
         vec3 l = normalize(lp.xyz - v_world_position * lp.w);
-        float n_dot_l = dot(n, l);
-        // n.l runs over [-1, 1]; the ramp over [0, 1].
-        float s = 0.5 * n_dot_l + 0.5;
-        color += u_diffuse * u_light_color[i] * u_base_color.rgb * texture(u_ramp, s).rgb;
-        if (n_dot_l > 0.0) {
-            vec3 h = normalize(l + v);
-            float t = pow(max(dot(n, h), 0.0), u_shininess);
-            color += u_specular * u_light_color[i] * texture(u_specular_ramp, t).r;
-        }
+        color += u_light_color[i] *
+                 (u_diffuse * rampDiffuse(n, l, u_base_color.rgb) + u_specular * toonHighlight(n, l, v));
     }
-    float edge = texture(u_edge_ramp, max(dot(n, v), 0.0)).r;
-    color *= mix(1.0, edge, u_edge);
+    color *= mix(1.0, silhouette(n, v), u_edge);
     o_color = vec4(color, 1.0);
 }

@@ -18,17 +18,21 @@ uniform float u_ambient;   // light every point gets, lit or not
 
 out vec4 o_color;
 
+float bandTone(float n_dot_l, int levels) {
+    float d = max(n_dot_l, 0.0);
+    float count = float(levels);
+    // floor picks the band d falls in; d = 1 would be band L, so clamp to the last one.
+    float k = min(floor(d * count), count - 1.0);
+    return k / (count - 1.0);
+}
+
 void main() {
     vec3 n = normalize(v_world_normal);
-    float levels = float(u_levels);
     vec3 light = vec3(u_ambient);
     for (int i = 0; i < u_light_count; ++i) {
         vec4 lp = u_light_position[i];
         vec3 l = normalize(lp.xyz - v_world_position * lp.w);
-        float d = max(dot(n, l), 0.0);
-        // floor picks the band d falls in; d = 1 would be band L, so clamp to the last one.
-        float k = min(floor(d * levels), levels - 1.0);
-        light += u_light_color[i] * (k / (levels - 1.0));
+        light += u_light_color[i] * bandTone(dot(n, l), u_levels);
     }
     o_color = vec4(u_base_color.rgb * light, 1.0);
 }

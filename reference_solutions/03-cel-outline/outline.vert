@@ -18,17 +18,18 @@ uniform vec2 u_resolution;     // target size in pixels
 
 uniform float u_outline_width;  // pixels
 
-void main() {
-    vec4 clip = u_model_view_projection * vec4(a_position, 1.0);
+// The normal in view space: the inverse transpose keeps it perpendicular to the surface under
+// non-uniform scale; the view matrix is a rotation (and a translation, which mat3() drops), and
+// normals follow a rotation like any direction.
+vec3 viewNormal(vec3 normal) {
+    return normalize(mat3(u_view) * (u_normal_matrix * normal));
+}
 
-    // The normal in view space: the inverse transpose keeps it perpendicular to the surface
-    // under non-uniform scale; the view matrix is a rotation (and a translation, which mat3()
-    // drops), and normals follow a rotation like any direction.
-    vec3 n_view = normalize(mat3(u_view) * (u_normal_matrix * a_normal));
-
-    // Its direction on the screen: the projection applied to a direction (w = 0), x and y kept,
-    // then measured in pixels (NDC spans 2 units over u_resolution pixels), so that a
-    // non-square target still gets round offsets.
+// The normal's direction on the screen, a unit vector in pixels.
+vec2 screenDirection(vec3 n_view) {
+    // The projection applied to a direction (w = 0), x and y kept, then measured in pixels (NDC
+    // spans 2 units over u_resolution pixels), so that a non-square target still gets round
+    // offsets.
     vec2 n_pixels = (u_projection * vec4(n_view, 0.0)).xy * (0.5 * u_resolution);
     float len = length(n_pixels);
     vec2 dir = len > 1e-6 ? n_pixels / len : vec2(0.0);
@@ -39,9 +40,15 @@ void main() {
     // over the last 15 degrees or so; silhouette normals are nearly perpendicular to the view
     // axis and get the full width.
     float fade = clamp(length(n_view.xy) / 0.25, 0.0, 1.0);
+    return dir * fade;
+}
+
+void main() {
+    vec4 clip = u_model_view_projection * vec4(a_position, 1.0);
+    vec2 dir = screenDirection(viewNormal(a_normal));
 
     // u_outline_width pixels are 2 * width / resolution NDC units; times w because the
     // rasteriser will divide clip.xy by w.
-    clip.xy += dir * fade * (2.0 * u_outline_width / u_resolution) * clip.w;
+    clip.xy += dir * (2.0 * u_outline_width / u_resolution) * clip.w;
     gl_Position = clip;
 }

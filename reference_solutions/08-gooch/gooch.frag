@@ -32,25 +32,35 @@ uniform float u_shininess;  // Phong exponent
 out vec4 o_color;   // attachment "color"
 out vec4 o_normal;  // attachment "normal": world-space unit normal, encoded into 0..1
 
+vec3 goochTone(vec3 n, vec3 l, vec3 k_d) {
+    float t = (1.0 + dot(n, l)) * 0.5;
+    vec3 k_cool = u_k_blue + u_alpha * k_d;
+    vec3 k_warm = u_k_yellow + u_beta * k_d;
+    return t * k_warm + (1.0 - t) * k_cool;
+}
+
+vec3 whiteHighlight(vec3 n, vec3 l, vec3 v) {
+    float n_dot_l = dot(n, l);
+    if (n_dot_l <= 0.0) {
+        return vec3(0.0);  // the light is behind the surface: r may still point at the viewer
+    }
+    vec3 r = 2.0 * n_dot_l * n - l;  // l mirrored about n
+    return vec3(u_specular * pow(max(dot(r, v), 0.0), u_shininess));  // white, not k_d
+}
+
+vec4 encodeNormal(vec3 n) {
+    // The target is rgba8: it stores 0..1 only, so a component of -0.7 would come back as 0.
+    return vec4(n * 0.5 + 0.5, 1.0);
+}
+
 void main() {
     vec3 n = normalize(v_world_normal);
     vec4 light = u_light_position[0];
     vec3 l = normalize(light.xyz - v_world_position * light.w);
-    vec3 k_d = u_base_color.rgb;
+    vec3 v = normalize(u_camera_position - v_world_position);
 
-    float n_dot_l = dot(n, l);
-    float t = (1.0 + n_dot_l) * 0.5;
-    vec3 k_cool = u_k_blue + u_alpha * k_d;
-    vec3 k_warm = u_k_yellow + u_beta * k_d;
-    vec3 color = t * k_warm + (1.0 - t) * k_cool;
-
-    if (n_dot_l > 0.0) {
-        vec3 v = normalize(u_camera_position - v_world_position);
-        vec3 r = 2.0 * n_dot_l * n - l;  // l mirrored about n
-        color += vec3(u_specular * pow(max(dot(r, v), 0.0), u_shininess));
-    }
+    vec3 color = goochTone(n, l, u_base_color.rgb) + whiteHighlight(n, l, v);
 
     o_color = vec4(color, 1.0);
-    // The target is rgba8: it stores 0..1 only, so a component of -0.7 would come back as 0.
-    o_normal = vec4(n * 0.5 + 0.5, 1.0);
+    o_normal = encodeNormal(n);
 }

@@ -5,7 +5,8 @@
 //   k    = min(floor(d * L), L - 1)         which of the L equal bands d falls in: 0 .. L-1
 //   tone = k / (L - 1)                      0 (shadow) .. 1 (full light), evenly spaced
 //   colour = base colour * (u_ambient + sum over lights of light colour * tone)
-// Read labs/02-toon/README.md first: it explains why, and what goes wrong.
+// Read labs/02-toon/README.md first: it explains why, and what goes wrong. The function and main
+// are graded each on its own: keep bandTone's name and parameters (README, "How it is graded").
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -20,6 +21,20 @@ uniform float u_ambient;  // light every point gets, lit or not
 
 out vec4 o_color;
 
+// The tone of one light: its Lambert term d = max(n.l, 0) quantised into `levels` equal bands,
+// 0 for the lowest band and 1 for the highest.
+float bandTone(float n_dot_l, int levels) {
+    float d = max(n_dot_l, 0.0);
+    // Climb the bands: d has reached band k once it is at least k/L.
+    int k = 0;
+    for (int j = 1; j < levels; ++j) {
+        if (d * float(levels) >= float(j)) {
+            k = j;
+        }
+    }
+    return float(k) / float(levels - 1);
+}
+
 void main() {
     vec3 n = normalize(v_world_normal);
 
@@ -27,15 +42,7 @@ void main() {
     for (int i = 0; i < u_light_count; ++i) {
         vec4 lp = u_light_position[i];
         vec3 l = normalize(lp.xyz - v_world_position * lp.w);
-        float d = max(dot(n, l), 0.0);
-        // Climb the bands: d has reached band k once it is at least k/L.
-        int k = 0;
-        for (int j = 1; j < u_levels; ++j) {
-            if (d * float(u_levels) >= float(j)) {
-                k = j;
-            }
-        }
-        light += u_light_color[i] * (float(k) / float(u_levels - 1));
+        light += u_light_color[i] * bandTone(dot(n, l), u_levels);
     }
 
     o_color = vec4(u_base_color.rgb * light, 1.0);

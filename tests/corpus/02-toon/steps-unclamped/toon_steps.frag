@@ -5,7 +5,8 @@
 //   k    = min(floor(d * L), L - 1)         which of the L equal bands d falls in: 0 .. L-1
 //   tone = k / (L - 1)                      0 (shadow) .. 1 (full light), evenly spaced
 //   colour = base colour * (u_ambient + sum over lights of light colour * tone)
-// Read labs/02-toon/README.md first: it explains why, and what goes wrong.
+// Read labs/02-toon/README.md first: it explains why, and what goes wrong. The function and main
+// are graded each on its own: keep bandTone's name and parameters (README, "How it is graded").
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -20,18 +21,24 @@ uniform float u_ambient;  // light every point gets, lit or not
 
 out vec4 o_color;
 
+// The tone of one light: its Lambert term d = max(n.l, 0) quantised into `levels` equal bands,
+// 0 for the lowest band and 1 for the highest.
+float bandTone(float n_dot_l, int levels) {
+    float d = n_dot_l;
+    float count = float(levels);
+    // The top band has to stop at L - 1 (d = 1 would give band L).
+    float k = min(floor(d * count), count - 1.0);
+    return k / (count - 1.0);
+}
+
 void main() {
     vec3 n = normalize(v_world_normal);
-    float levels = float(u_levels);
 
     vec3 light = vec3(u_ambient);
     for (int i = 0; i < u_light_count; ++i) {
         vec4 lp = u_light_position[i];
         vec3 l = normalize(lp.xyz - v_world_position * lp.w);
-        float d = dot(n, l);
-        // The top band has to stop at L - 1 (d = 1 would give band L).
-        float k = min(floor(d * levels), levels - 1.0);
-        light += u_light_color[i] * (k / (levels - 1.0));
+        light += u_light_color[i] * bandTone(dot(n, l), u_levels);
     }
 
     o_color = vec4(u_base_color.rgb * light, 1.0);

@@ -1,31 +1,52 @@
 #version 330 core
-// Inverted hull with the screen direction found numerically: project the vertex and a point a
-// tiny step along its normal, and see which way the second one landed on the screen. That is
-// the exact direction of the normal on the screen (perspective included), then pushed out by
-// u_outline_width pixels, times w.
+// 03-cel-outline, task 1, vertex stage of the inverted hull.
+//
+// The "hull" pass draws the object a second time, into the image the "cel" pass just drew, with
+// FRONT faces culled (lab.json). If every vertex is pushed out along its normal, the back faces
+// of this slightly larger shell peek out around the object: that rim is the outline. Read
+// labs/03-cel-outline/README.md first: it explains why the push is done in clip space and why
+// it is multiplied by w. The two functions and main are graded each on its own: keep the
+// functions' names and parameters (README, "How it is graded").
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 
-uniform mat4 u_model;
-uniform mat4 u_view_projection;
-uniform mat3 u_normal_matrix;
-uniform vec2 u_resolution;
-uniform float u_outline_width;
+uniform mat4 u_model_view_projection;
+uniform mat4 u_model_view;
+uniform mat4 u_view;
+uniform mat4 u_projection;
+uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model))): object normals to world space
+uniform vec2 u_resolution;     // target size in pixels
 
-void main() {
-    vec4 world = u_model * vec4(a_position, 1.0);
-    vec3 n_world = normalize(u_normal_matrix * a_normal);
+uniform float u_outline_width;  // the outline's width in PIXELS (4 in most scenes; some set others)
 
-    vec4 clip = u_view_projection * world;
-    vec4 clip_step = u_view_projection * vec4(world.xyz + 1e-3 * n_world, 1.0);
+// The normal in view space.
+vec3 viewNormal(vec3 normal) {
+    // The inverse transpose for the object's scale, then the view's rotation.
+    return normalize(mat3(u_view) * u_normal_matrix * normal);
+}
+
+// The normal's direction on the screen: a unit vector measured in pixels, or (0, 0) where the
+// normal points straight at (or away from) the eye.
+vec2 screenDirection(vec3 n_view) {
+    // Project the vertex and a point a small step along the normal; the difference, in pixels,
+    // is where the normal points on the screen.
+    vec4 p_view = u_model_view * vec4(a_position, 1.0);
+    vec4 clip = u_projection * p_view;
+    vec4 clip_step = u_projection * vec4(p_view.xyz + 1e-3 * n_view, 1.0);
 
     vec2 screen = clip.xy / clip.w * 0.5 * u_resolution;
     vec2 screen_step = clip_step.xy / clip_step.w * 0.5 * u_resolution;
     vec2 d = screen_step - screen;
+    return length(d) > 1e-5 ? normalize(d) : vec2(0.0);
+}
 
-    if (length(d) > 1e-5) {
-        clip.xy += normalize(d) * u_outline_width / (0.5 * u_resolution) * clip.w;
-    }
+void main() {
+    vec4 clip = u_model_view_projection * vec4(a_position, 1.0);
+    vec2 dir = screenDirection(viewNormal(a_normal));
+
+    // One pixel is 2 / u_resolution in NDC, and clip.xy is divided by w afterwards.
+    clip.xy += dir * u_outline_width * (2.0 / u_resolution) * clip.w;
+
     gl_Position = clip;
 }

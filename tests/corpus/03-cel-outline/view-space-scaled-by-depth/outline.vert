@@ -1,31 +1,48 @@
 #version 330 core
-// Inverted hull, extruded in VIEW space but by an amount that grows with the distance, so it
-// comes out as the same number of pixels everywhere. With a symmetric perspective projection,
-// x_ndc = P[0][0] x_view / (-z_view): moving x_view by dx moves the point by
-// P[0][0] dx / (-z_view) NDC units, i.e. that times width/2 pixels. Solve for dx.
+// 03-cel-outline, task 1, vertex stage of the inverted hull.
+//
+// The "hull" pass draws the object a second time, into the image the "cel" pass just drew, with
+// FRONT faces culled (lab.json). If every vertex is pushed out along its normal, the back faces
+// of this slightly larger shell peek out around the object: that rim is the outline. Read
+// labs/03-cel-outline/README.md first: it explains why the push is done in clip space and why
+// it is multiplied by w. The two functions and main are graded each on its own: keep the
+// functions' names and parameters (README, "How it is graded").
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 
+uniform mat4 u_model_view_projection;
 uniform mat4 u_model_view;
-uniform mat4 u_projection;
 uniform mat4 u_view;
-uniform mat3 u_normal_matrix;
-uniform vec2 u_resolution;
-uniform float u_outline_width;
+uniform mat4 u_projection;
+uniform mat3 u_normal_matrix;  // transpose(inverse(mat3(u_model))): object normals to world space
+uniform vec2 u_resolution;     // target size in pixels
+
+uniform float u_outline_width;  // the outline's width in PIXELS (4 in most scenes; some set others)
+
+// The normal in view space.
+vec3 viewNormal(vec3 normal) {
+    // The inverse transpose for the object's scale, then the view's rotation.
+    return normalize(mat3(u_view) * u_normal_matrix * normal);
+}
+
+// The normal's direction on the screen: a unit vector measured in pixels, or (0, 0) where the
+// normal points straight at (or away from) the eye.
+vec2 screenDirection(vec3 n_view) {
+    // The projection only scales x and y (and divides by depth): the direction in pixels is the
+    // view-space direction times those scales.
+    vec2 n_pixels = n_view.xy * vec2(u_projection[0][0], u_projection[1][1]) * (0.5 * u_resolution);
+    return dot(n_pixels, n_pixels) > 1e-12 ? normalize(n_pixels) : vec2(0.0);
+}
 
 void main() {
     vec4 p_view = u_model_view * vec4(a_position, 1.0);
-    vec3 n_view = mat3(u_view) * u_normal_matrix * a_normal;
+    vec2 dir = screenDirection(viewNormal(a_normal));
 
-    // The normal's direction on the screen, in pixels.
+    // u_outline_width pixels back to view-space units at this vertex's depth. Only x and y
+    // move, so the depth stays that of the surface.
     vec2 scale = vec2(u_projection[0][0], u_projection[1][1]) * 0.5 * u_resolution;
-    vec2 n_pixels = n_view.xy * scale;
-    if (dot(n_pixels, n_pixels) > 1e-12) {
-        vec2 dir = normalize(n_pixels);
-        // u_outline_width pixels back to view-space units at this vertex's depth. Only x and y
-        // move, so the depth stays that of the surface.
-        p_view.xy += dir * u_outline_width * (-p_view.z) / scale;
-    }
+    p_view.xy += dir * u_outline_width * (-p_view.z) / scale;
+
     gl_Position = u_projection * p_view;
 }

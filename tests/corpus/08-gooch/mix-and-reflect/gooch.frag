@@ -1,23 +1,53 @@
 #version 330 core
-// 08-gooch, pass 1: Gooch tone + white highlight, colour and normal to two attachments.
-// Written with GLSL's built-ins: mix() for the cool-to-warm blend, reflect() for the highlight.
+// 08-gooch, pass 1, fragment stage: Gooch tone shading with a white highlight, written to TWO
+// attachments of the target "gooch" at once (multiple render targets, MRT):
+//   o_color  -> gooch.color   the illustration's colour
+//   o_normal -> gooch.normal  the surface normal, which pass 2 (lines.frag) reads to find creases
+// Read labs/08-gooch/README.md first: it derives every formula below. Each function is one idea
+// of the lab and is graded on its own: keep their names and parameters (README, "How it is graded").
+// (u_silhouettes, u_creases, u_depth_threshold, u_crease_threshold and u_line_color in lab.json
+// belong to pass 2, lines.frag.)
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
 
-uniform vec3 u_camera_position;
+uniform vec3 u_camera_position;                // eye position, world space
 uniform vec4 u_light_position;  // declared as one vec4: the framework gives it the first light
-uniform vec4 u_base_color;
+uniform vec4 u_base_color;                     // k_d, the object's own colour
 
-uniform vec3 u_k_blue;
-uniform vec3 u_k_yellow;
-uniform float u_alpha;
-uniform float u_beta;
-uniform float u_specular;
-uniform float u_shininess;
+uniform vec3 u_k_blue;      // k_blue = (0, 0, b): the cool undertone
+uniform vec3 u_k_yellow;    // k_yellow = (y, y, 0): the warm undertone
+uniform float u_alpha;      // how much of k_d the cool end keeps
+uniform float u_beta;       // how much of k_d the warm end keeps
+uniform float u_specular;   // k_s, strength of the white highlight
+uniform float u_shininess;  // the Phong exponent
 
-layout(location = 0) out vec4 o_color;
-layout(location = 1) out vec4 o_normal;
+layout(location = 0) out vec4 o_color;   // attachment "color"
+layout(location = 1) out vec4 o_normal;  // attachment "normal"
+
+// The Gooch tone at a point with unit normal n, l the unit vector toward the light and k_d the
+// object's own colour: the cool colour where the surface faces away from the light, the warm one
+// where it faces it.
+vec3 goochTone(vec3 n, vec3 l, vec3 k_d) {
+    vec3 k_cool = u_k_blue + u_alpha * k_d;
+    vec3 k_warm = u_k_yellow + u_beta * k_d;
+    // mix(a, b, t) = a (1 - t) + b t: t = 0 gives cool (facing away), t = 1 warm (facing the light)
+    return mix(k_cool, k_warm, 0.5 + 0.5 * dot(n, l));
+}
+
+// The white Phong highlight k_s * max(r.v, 0)^shininess, as a colour, with r the direction toward
+// the light mirrored about n and v the unit vector toward the eye; black where the light is behind
+// the surface (n.l <= 0).
+vec3 whiteHighlight(vec3 n, vec3 l, vec3 v) {
+    // reflect() wants the incoming direction, which travels from the light to the surface: -l
+    float s = dot(n, l) > 0.0 ? pow(max(dot(reflect(-l, n), v), 0.0), u_shininess) : 0.0;
+    return vec3(u_specular * s);
+}
+
+// The unit normal n as o_normal stores it, for pass 2 (lines.frag decodes it in normal_at).
+vec4 encodeNormal(vec3 n) {
+    return vec4(0.5 + 0.5 * n, 1.0);
+}
 
 void main() {
     vec3 n = normalize(v_world_normal);
@@ -25,14 +55,6 @@ void main() {
                                        : normalize(u_light_position.xyz - v_world_position);
     vec3 v = normalize(u_camera_position - v_world_position);
 
-    vec3 k_cool = u_k_blue + u_alpha * u_base_color.rgb;
-    vec3 k_warm = u_k_yellow + u_beta * u_base_color.rgb;
-    // mix(a, b, t) = a (1 - t) + b t: t = 0 gives cool (facing away), t = 1 warm (facing the light)
-    vec3 tone = mix(k_cool, k_warm, 0.5 + 0.5 * dot(n, l));
-
-    // reflect() wants the incoming direction, which travels from the light to the surface: -l
-    float highlight = dot(n, l) > 0.0 ? pow(max(dot(reflect(-l, n), v), 0.0), u_shininess) : 0.0;
-
-    o_color = vec4(tone + u_specular * highlight, 1.0);
-    o_normal = vec4(0.5 + 0.5 * n, 1.0);
+    o_color = vec4(goochTone(n, l, u_base_color.rgb) + whiteHighlight(n, l, v), 1.0);
+    o_normal = encodeNormal(n);
 }

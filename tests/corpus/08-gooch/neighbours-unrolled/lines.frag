@@ -4,7 +4,8 @@
 // where that pixel is in the textures of pass 1 (0..1 across the screen).
 //   silhouettes: the distance to the surface jumps between neighbouring pixels (u_depth)
 //   creases:     the surface normal turns sharply between neighbouring pixels (u_normal)
-// Read labs/08-gooch/README.md first.
+// Read labs/08-gooch/README.md first. The functions are graded on their own: keep their names and
+// parameters (README, "How it is graded").
 // (u_k_blue, u_k_yellow, u_alpha, u_beta and u_specular in lab.json belong to pass 1, gooch.frag.)
 
 in vec2 v_uv;
