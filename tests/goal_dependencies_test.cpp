@@ -1,5 +1,6 @@
-// A goal that rests on others (lab.json "depends_on") on a real lab: 02-toon's teapot goal
-// declared to rest on the ramp, highlight and edge goals, graded for a mistake that only the edges
+// A goal that rests on others (lab.json "depends_on") on a real lab: 02-toon's "together" goal,
+// without the work it is judged on (so on the whole shaders), declared to rest on the ramp,
+// highlight and edge goals, graded for a mistake that only the edges
 // show. The teapot goal is then not met because of the edges, and says so, in report.json and in
 // the terminal; nothing else changes.
 #include <gtest/gtest.h>
@@ -38,7 +39,11 @@ TEST(GoalDependencies, AGoalRestingOnAMissedOneIsNotMetBecauseOfIt) {
         fs::copy(kRoot / "labs" / part, labs / part, fs::copy_options::recursive);
     json spec = json::parse(std::ifstream(labs / "02-toon" / "lab.json"));
     for (json& g : spec["goals"])
-        if (g["id"] == "together") g["depends_on"] = {"ramp", "highlight", "edges"};
+        if (g["id"] == "together") {
+            // depends_on is for goals judged on the whole shaders (a goal with work rests on none).
+            g.erase("work");
+            g["depends_on"] = {"ramp", "highlight", "edges"};
+        }
     std::ofstream(labs / "02-toon" / "lab.json") << spec.dump(2);
     // A mistake of the edges alone (n.l instead of n.v): the other goals stay met.
     const fs::path submission = tmp / "submission";

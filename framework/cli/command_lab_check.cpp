@@ -15,6 +15,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -27,6 +28,7 @@
 #include "shaderlab/authoring/readme_tables.h"
 #include "shaderlab/base/json_messages.h"
 #include "shaderlab/base/paths.h"
+#include "shaderlab/glsl/glsl_compose.h"
 #include "shaderlab/grading/grading.h"
 #include "shaderlab/lab/lab_catalog.h"
 #include "shaderlab/lab/lab_spec.h"
@@ -117,9 +119,38 @@ Verdict checkReference(const LabCheckPlaces& at) {
         if (!fs::is_regular_file(at.reference / f, ec))
             return fail(shown(at.reference / f, at) +
                         " is missing: the reference solution holds every student file");
+    // Every goal's work taken from the reference and composed with the reference gives the
+    // reference back: its functions are there, with the starter's signatures.
+    std::vector<std::string> problems;
+    int functions = 0;
+    for (const GoalSpec& g : spec.goals) {
+        std::map<std::string, std::vector<std::string>> take;
+        for (const GoalWork& w : g.work)
+            if (!w.function.empty()) take[w.file].push_back(w.function);
+        for (const auto& [file, names] : take) {
+            const std::string reference = readFile((at.reference / file).string()).text;
+            const std::string starter = readFile((at.lab / file).string()).text;
+            glsl::ComposeInput in{file, reference, reference, "", names, {}};
+            const glsl::Composed alone = glsl::composeFunctions(in);
+            if (!alone.ok || alone.text != reference)
+                problems.push_back("goal " + g.id + ": " +
+                                   (alone.ok ? "composing it changes the reference" : alone.note));
+            // The starter's functions as the student gets them: the reference must take the same.
+            glsl::ComposeInput with_starter{file, reference, starter, "", names, {}};
+            const glsl::Composed started = glsl::composeFunctions(with_starter);
+            if (!started.ok) problems.push_back("goal " + g.id + ": the starter's " + started.note);
+            functions += static_cast<int>(names.size());
+        }
+    }
+    if (!problems.empty())
+        return fail(
+            "the reference cannot be composed with the goals' work (docs/grading.md, \"Goal isolation\")",
+            problems);
     return {"ok",
             count(spec.student_files.size(), "student file", "student files") + " in " +
-                shown(at.reference, at) + "/",
+                shown(at.reference, at) + "/" +
+                (functions ? ", " + count(functions, "function", "functions") + " of the goals' work in each"
+                           : ""),
             {}};
 }
 
@@ -241,9 +272,9 @@ Verdict checkGoldens(const LabCheckPlaces& at, const std::string& backend) {
             {}};
 }
 
-// runCorpus prints a line per case; they go to a log here, so that lab-check prints one line per
-// check, and the cases that fail are read back from corpus.json.
-int runCorpusLogged(const CorpusArgs& args, const fs::path& log) {
+// runCorpus and runMutants print a line per case; they go to a log here, so that lab-check prints
+// one line per check, and what fails is read back from corpus.json or mutants.json.
+int runLogged(const std::function<int()>& command, const fs::path& log) {
     std::fflush(stdout);
     std::cout.flush();
     const int saved = ::dup(STDOUT_FILENO);
@@ -251,11 +282,11 @@ int runCorpusLogged(const CorpusArgs& args, const fs::path& log) {
     if (saved < 0 || fd < 0) {
         if (saved >= 0) ::close(saved);
         if (fd >= 0) ::close(fd);
-        return runCorpus(args);
+        return command();
     }
     ::dup2(fd, STDOUT_FILENO);
     ::close(fd);
-    const int rc = runCorpus(args);
+    const int rc = command();
     std::fflush(stdout);
     std::cout.flush();
     ::dup2(saved, STDOUT_FILENO);
@@ -278,7 +309,7 @@ Verdict checkCorpusVerdicts(const LabCheckPlaces& at, const LabCheckArgs& args) 
     fs::remove_all(corpus.out_dir, ec);
     fs::create_directories(corpus.out_dir, ec);
     const fs::path log = fs::path(corpus.out_dir) / "corpus.log";
-    const int rc = runCorpusLogged(corpus, log);
+    const int rc = runLogged([&] { return runCorpus(corpus); }, log);
     const json summary =
         json::parse(readFile((fs::path(corpus.out_dir) / "corpus.json").string()).text, nullptr, false);
     if (rc == 2 || !summary.is_array())
@@ -307,6 +338,43 @@ Verdict checkCorpusVerdicts(const LabCheckPlaces& at, const LabCheckArgs& args) 
                 "/ as expected (reference, starter and every case); hints in " + shown(at.lab / "hints", at) +
                 "/ fresh",
             {}};
+}
+
+// Coverage by mutation: no mutant of the reference that changes what it computes passes every goal
+// unless cases.json declares it equivalent (command_mutants.cpp).
+Verdict checkMutants(const LabCheckPlaces& at, const LabCheckArgs& args) {
+    MutantsArgs mutants;
+    mutants.common.backend = args.common.backend;
+    mutants.common.labs_root = at.labs_root;
+    mutants.common.labs = {at.id};
+    mutants.corpus_root = at.corpus.parent_path().string();
+    mutants.reference_root = at.reference.parent_path().string();
+    mutants.out_dir = (at.out / "mutants").string();
+    mutants.timeout_s = args.timeout_s;
+    std::error_code ec;
+    fs::create_directories(mutants.out_dir, ec);
+    const fs::path log = fs::path(mutants.out_dir) / "mutants.log";
+    const int rc = runLogged([&] { return runMutants(mutants); }, log);
+    const json result =
+        json::parse(readFile((fs::path(mutants.out_dir) / "mutants.json").string()).text, nullptr, false);
+    if (rc == 2 || !result.is_object() || result["labs"].empty())
+        return fail("the mutants cannot be graded (log: " + shown(log, at) + ")");
+    const json& lab = result["labs"][0];
+    std::vector<std::string> survivors;
+    for (const json& r : lab["runs"])
+        if (r.value("verdict", "") == "survivor")
+            survivors.push_back(r.value("id", "?") + " (line " + std::to_string(r.value("line", 0)) +
+                                "): " + r.value("change", ""));
+    const std::string figures = std::to_string(lab.value("mutants", 0)) + " mutants, " +
+                                std::to_string(lab.value("killed", 0)) + " killed, " +
+                                std::to_string(lab.value("equivalent", 0)) + " declared equivalent, " +
+                                std::to_string(lab.value("does_not_compile", 0)) + " not compiling";
+    if (!survivors.empty())
+        return fail(figures + ", " + std::to_string(survivors.size()) +
+                        " undeclared survivors: show each in a scene, or declare it in " +
+                        shown(at.corpus / "cases.json", at) + " (\"equivalent_mutants\") with the reason",
+                    survivors);
+    return {"ok", figures, {}};
 }
 
 void printVerdict(const std::string& name, const Verdict& v, double seconds) {
@@ -370,6 +438,7 @@ int runLabCheck(const LabCheckArgs& args) {
     run("minimum corpus", true, [&] { return checkMinimumCorpus(at); });
     run("goldens fresh", true, [&] { return checkGoldens(at, args.common.backend); });
     run("corpus verdicts", true, [&] { return checkCorpusVerdicts(at, args); });
+    run("mutants", true, [&] { return checkMutants(at, args); });
 
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::string skips = skipped ? ", " + std::to_string(skipped) + " skipped" : "";

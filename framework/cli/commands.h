@@ -197,6 +197,19 @@ struct LabCheckArgs {
 };
 int runLabCheck(const LabCheckArgs& args);
 
+// `shaderlab mutants [--lab LAB]...`: coverage by mutation (command_mutants.cpp, docs/authoring.md
+// "Mutants"): mutants of the reference solution graded as submissions; an undeclared survivor
+// fails the run.
+struct MutantsArgs {
+    CommonOptions common;        // backend, labs_root and the labs (empty: every lab)
+    std::string reference_root;  // empty: reference_solutions beside the labs folder
+    std::string corpus_root;     // empty: tests/corpus beside the labs folder (equivalent_mutants)
+    std::string out_dir;         // empty: out/mutants beside the labs folder
+    double timeout_s = 10.0;     // one mutant's render
+    int max_per_lab = 0;         // at most this many mutants per lab, spread evenly; 0: all
+};
+int runMutants(const MutantsArgs& args);
+
 // `shaderlab scene-sweep LAB`: candidate variants of one of the lab's scenes, each judged by how
 // well it separates each goal's corpus mistakes from its alternatives, ranked
 // (command_scene_sweep.cpp, docs/authoring.md "Choosing scenes with scene-sweep").

@@ -297,6 +297,28 @@ CLI::App* addLabCheck(CLI::App& app, LabCheckArgs* args) {
     return cmd;
 }
 
+CLI::App* addMutants(CLI::App& app, MutantsArgs* args) {
+    CLI::App* cmd = app.add_subcommand(
+        "mutants",
+        "grade mutants of the reference solution (a constant, an operator, a swizzle, a term, a call, a "
+        "statement moved) and list those that pass every goal without being declared equivalent");
+    cmd->add_option("lab", args->common.labs, "lab ids (default: every lab)");
+    cmd->add_option("--reference", args->reference_root,
+                    "reference solutions folder (default: reference_solutions beside labs/)");
+    cmd->add_option("--corpus", args->corpus_root,
+                    "folder of <lab>/cases.json, whose equivalent_mutants are declared (default: tests/corpus)");
+    cmd->add_option("--out", args->out_dir, "where mutants.json goes (default: out/mutants beside labs/)");
+    cmd->add_option("--max", args->max_per_lab, "at most this many mutants per lab, spread evenly (0: all)")
+        ->check(CLI::Range(0, 100000))
+        ->capture_default_str();
+    cmd->add_option("--timeout", args->timeout_s, "seconds one mutant may take to render")
+        ->check(CLI::Range(0.1, 600.0))
+        ->capture_default_str();
+    cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
+    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    return cmd;
+}
+
 CLI::App* addSceneSweep(CLI::App& app, SceneSweepArgs* args) {
     CLI::App* cmd = app.add_subcommand(
         "scene-sweep",
@@ -531,6 +553,8 @@ int main(int argc, char** argv) {
     CLI::App* new_lab_cmd = addNewLab(app, &new_lab);
     LabCheckArgs lab_check;
     CLI::App* lab_check_cmd = addLabCheck(app, &lab_check);
+    MutantsArgs mutants;
+    CLI::App* mutants_cmd = addMutants(app, &mutants);
     SceneSweepArgs scene_sweep;
     CLI::App* scene_sweep_cmd = addSceneSweep(app, &scene_sweep);
     BatchArgs batch;
@@ -586,6 +610,7 @@ int main(int argc, char** argv) {
     if (corpus_cmd->parsed()) return runCorpus(corpus);
     if (new_lab_cmd->parsed()) return runNewLab(new_lab);
     if (lab_check_cmd->parsed()) return runLabCheck(lab_check);
+    if (mutants_cmd->parsed()) return runMutants(mutants);
     if (scene_sweep_cmd->parsed()) return runSceneSweep(scene_sweep);
     if (batch_cmd->parsed()) return runBatch(batch);
     if (worker_cmd->parsed()) return runBatchWorker(worker);

@@ -44,26 +44,50 @@ void checkCase(const json& c, const Case& k, const std::string& path, const LabS
                                       didYouMean(g.get<std::string>(), goal_ids));
 }
 
-}  // namespace
-
-bool loadCases(const fs::path& file, const LabSpec& spec, std::vector<Case>* out,
-               std::vector<std::string>* errors) {
+// cases.json read and checked against the schema; false (with the problems) when it is not one.
+bool readCorpusFile(const fs::path& file, json* doc, std::vector<std::string>* errors) {
     const FileText t = readFile(file.string(), 1u << 20);
     if (!t.ok) {
         errors->push_back(file.string() + ": " + t.error);
         return false;
     }
-    const json doc = json::parse(t.text, nullptr, false);
-    if (doc.is_discarded()) {
+    *doc = json::parse(t.text, nullptr, false);
+    if (doc->is_discarded()) {
         errors->push_back(file.string() + ": not valid JSON");
         return false;
     }
     static const json schema = json::parse(corpusSchemaText());
     static const JsonSchemaChecker checker(schema);
     const std::size_t errors_before = errors->size();
-    for (const SchemaProblem& p : checker.check(doc))
+    for (const SchemaProblem& p : checker.check(*doc))
         errors->push_back(file.string() + ": " + (p.path.empty() ? "" : p.path + ": ") + p.problem);
-    if (errors->size() != errors_before) return false;
+    return errors->size() == errors_before;
+}
+
+}  // namespace
+
+bool loadEquivalentMutants(const fs::path& file, std::vector<EquivalentMutant>* out,
+                           std::vector<std::string>* errors) {
+    json doc;
+    if (!readCorpusFile(file, &doc, errors)) return false;
+    const std::size_t errors_before = errors->size();
+    const json list = doc.value("equivalent_mutants", json::array());
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        EquivalentMutant m{list[i]["id"], list[i]["reason"]};
+        for (const EquivalentMutant& other : *out)
+            if (other.id == m.id)
+                errors->push_back(file.string() + ": equivalent_mutants[" + std::to_string(i) + "].id: \"" +
+                                  m.id + "\" is listed twice");
+        out->push_back(std::move(m));
+    }
+    return errors->size() == errors_before;
+}
+
+bool loadCases(const fs::path& file, const LabSpec& spec, std::vector<Case>* out,
+               std::vector<std::string>* errors) {
+    json doc;
+    if (!readCorpusFile(file, &doc, errors)) return false;
+    const std::size_t errors_before = errors->size();
     if (doc["lab"] != spec.id)
         errors->push_back(file.string() + ": lab: is " + doc["lab"].dump() + ", not " + spec.id);
     const json& cases = doc["cases"];

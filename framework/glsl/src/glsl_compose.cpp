@@ -200,7 +200,10 @@ class Composer {
                 const std::vector<const Declaration*> mine = declarationsNamed(stu_, use);
                 if (mine.empty()) continue;  // a local, a parameter, or the prelude's
                 const Declaration& first = *mine.front();
-                if (isInterface(first) && !declarationsNamed(ref_, use).empty()) continue;
+                if (isInterface(first) && !declarationsNamed(ref_, use).empty()) {
+                    swapUniform(use, first);
+                    continue;
+                }
                 const bool function = first.kind == DeclKind::Function || first.kind == DeclKind::Prototype;
                 if (canonicalAll(in_.student, stu_, use, function) ==
                     canonicalAll(in_.reference, ref_, use, function))
@@ -229,6 +232,21 @@ class Composer {
             }
         }
         return true;
+    }
+
+    // A uniform the student's code reads, declared by the reference with another type (a
+    // sampler2D where the reference has a sampler2DShadow: the lab feeds either): the student's
+    // declaration stands in for the reference's, which must declare nothing else. Inputs and
+    // outputs stay the reference's: the other stage must match them.
+    void swapUniform(const std::string& name, const Declaration& mine) {
+        const std::vector<const Declaration*> theirs = declarationsNamed(ref_, name);
+        if (mine.storage != "uniform" || mine.kind != DeclKind::Variable || mine.names.size() != 1 ||
+            theirs.size() != 1 || theirs[0]->kind != DeclKind::Variable || theirs[0]->names.size() != 1)
+            return;
+        if (canonicalText(in_.student, stu_, mine) == canonicalText(in_.reference, ref_, *theirs[0])) return;
+        for (const auto& swap : uniform_swaps_)
+            if (swap.first == theirs[0]) return;
+        uniform_swaps_.push_back({theirs[0], &mine});
     }
 
     // Imported names the reference also declares get a name of their own.
@@ -293,17 +311,28 @@ class Composer {
         }
         std::string imports;
         for (const Declaration* d : imports_) imports += studentText(*d) + "\n";
-        std::string out(in_.reference.substr(0, at));
-        if (!out.empty() && out.back() != '\n') out += '\n';
-        out += prototypes + imports;
-        std::vector<std::pair<const Declaration*, const Declaration*>> order(taken_.begin(), taken_.end());
-        std::sort(order.begin(), order.end(),
-                  [](const auto& a, const auto& b) { return a.first->begin < b.first->begin; });
-        std::size_t from = at;
-        for (const auto& [r, mine] : order) {
-            out.append(in_.reference.substr(from, r->begin - from));
-            out += studentText(*mine);
-            from = r->end;
+        if (!(prototypes + imports).empty() && at > 0 && in_.reference[at - 1] != '\n')
+            imports.insert(imports.begin(), '\n');
+        // Every change to the reference, in the order of the text: the uniforms whose declaration
+        // is the student's, what the student's functions need (before the first of them), and the
+        // functions taken.
+        struct Change {
+            std::size_t begin, end;
+            std::string text;
+        };
+        std::vector<Change> changes;
+        for (const auto& [r, mine] : uniform_swaps_)
+            changes.push_back({r->begin, r->end, studentText(*mine)});
+        changes.push_back({at, at, prototypes + imports});
+        for (const auto& [r, mine] : taken_) changes.push_back({r->begin, r->end, studentText(*mine)});
+        std::stable_sort(changes.begin(), changes.end(),
+                         [](const Change& a, const Change& b) { return a.begin < b.begin; });
+        std::string out;
+        std::size_t from = 0;
+        for (const Change& c : changes) {
+            out.append(in_.reference.substr(from, c.begin - from));
+            out += c.text;
+            from = c.end;
         }
         out.append(in_.reference.substr(from));
         return out;
@@ -314,6 +343,7 @@ class Composer {
     std::vector<std::pair<const Declaration*, const Declaration*>> taken_;  // reference's, student's
     std::vector<const Declaration*> imports_;                               // in the student's order
     std::map<std::string, std::string> renames_;
+    std::vector<std::pair<const Declaration*, const Declaration*>> uniform_swaps_;  // reference's, student's
 };
 
 }  // namespace

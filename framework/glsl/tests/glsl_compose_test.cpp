@@ -192,5 +192,28 @@ TEST(GlslCompose, TheReferenceItselfComposesToItself) {
     EXPECT_EQ(c.text, kReference);
 }
 
+TEST(GlslCompose, AUniformOfAnotherTypeIsTheStudents) {
+    // The lab feeds a shadow map to a sampler2D or a sampler2DShadow, whichever is declared.
+    const std::string reference = R"(uniform sampler2DShadow u_map;
+uniform float u_bias;
+float visibility(vec3 p) { return texture(u_map, p); }
+void main() {}
+)";
+    const std::string student = R"(uniform sampler2D u_map;
+uniform float u_bias;
+float visibility(vec3 p) { return step(p.z - u_bias, texture(u_map, p.xy).r); }
+void main() {}
+)";
+    ComposeInput in;
+    in.file = "shadow.frag";
+    in.reference = reference;
+    in.student = student;
+    in.take = {"visibility"};
+    const Composed c = composeFunctions(in);
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(c.text.substr(0, 26), "uniform sampler2D u_map;\nu");
+    EXPECT_NE(c.text.find("uniform float u_bias;"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace shaderlab::glsl

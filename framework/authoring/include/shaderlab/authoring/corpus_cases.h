@@ -32,6 +32,17 @@ const std::string& corpusSchemaText();
 bool loadCases(const std::filesystem::path& file, const LabSpec& spec, std::vector<Case>* out,
                std::vector<std::string>* errors);
 
+// A mutant of the reference declared to compute what the reference does (cases.json
+// "equivalent_mutants"): its id as mutants.h makes it, and why.
+struct EquivalentMutant {
+    std::string id, reason;
+};
+
+// The equivalent mutants a lab's cases.json declares (none when the file has no such list). False,
+// with every problem in `errors`, when the file is not a valid cases.json or lists an id twice.
+bool loadEquivalentMutants(const std::filesystem::path& file, std::vector<EquivalentMutant>* out,
+                           std::vector<std::string>* errors);
+
 // A submission folder for one case, `submission`/<lab>/: the reference's student files (from
 // `reference_lab`), then the case's files (from `case_dir`) over them, then the deletions. False,
 // with the reason, when a reference file cannot be copied.
