@@ -305,8 +305,9 @@ CLI::App* addMutants(CLI::App& app, MutantsArgs* args) {
     cmd->add_option("lab", args->common.labs, "lab ids (default: every lab)");
     cmd->add_option("--reference", args->reference_root,
                     "reference solutions folder (default: reference_solutions beside labs/)");
-    cmd->add_option("--corpus", args->corpus_root,
-                    "folder of <lab>/cases.json, whose equivalent_mutants are declared (default: tests/corpus)");
+    cmd->add_option(
+        "--corpus", args->corpus_root,
+        "folder of <lab>/cases.json, whose equivalent_mutants are declared (default: tests/corpus)");
     cmd->add_option("--out", args->out_dir, "where mutants.json goes (default: out/mutants beside labs/)");
     cmd->add_option("--max", args->max_per_lab, "at most this many mutants per lab, spread evenly (0: all)")
         ->check(CLI::Range(0, 100000))

@@ -215,6 +215,12 @@ void isolateGoals(const LabSpec& spec, const std::string& submission_dir, const 
             judgedAlone(&g, {});
             continue;
         }
+        if (files == texts.student) {
+            // The student's files differ from the reference only in this goal's work: the
+            // composition is their own shaders, already judged.
+            judgedAlone(&g, g.failing);
+            continue;
+        }
         auto same =
             std::find_if(jobs.begin(), jobs.end(), [&](const IsolationJob& j) { return j.files == files; });
         if (same == jobs.end()) {
