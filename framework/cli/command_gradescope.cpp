@@ -117,7 +117,9 @@ std::string bundledProgram(const std::string& requested, std::string* error, std
         return {};
     }
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
-    if (bytes.compare(0, 4, "\x7f" "ELF") != 0) {
+    if (bytes.compare(0, 4,
+                      "\x7f"
+                      "ELF") != 0) {
         *error = requested + ": --binary must be a shaderlab program (this is not a Linux executable)";
         return {};
     }
@@ -211,9 +213,10 @@ void forgetFolders(json* j, const std::vector<std::string>& folders) {
     std::string text = j->get<std::string>();
     for (const std::string& folder : folders) {
         if (folder.empty()) continue;
-        for (const auto& [from, to] : {std::pair<std::string, std::string>{folder + "/", ""},
-                                              {folder, "your upload"}}) {
-            for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+        for (const auto& [from, to] :
+             {std::pair<std::string, std::string>{folder + "/", ""}, {folder, "your upload"}}) {
+            for (std::size_t at = text.find(from); at != std::string::npos;
+                 at = text.find(from, at + to.size()))
                 text.replace(at, from.size(), to);
         }
     }

@@ -221,8 +221,8 @@ std::uint64_t extensionNumber(const tinygltf::Value& object, const char* key, co
     return static_cast<std::uint64_t>(d);
 }
 
-std::string extensionString(const tinygltf::Value& object, const char* key, const std::string& who,
-                            const std::string& fallback) {
+[[maybe_unused]] std::string extensionString(const tinygltf::Value& object, const char* key,
+                                             const std::string& who, const std::string& fallback) {
     if (!object.Has(key)) return fallback;
     const tinygltf::Value& v = object.Get(key);
     if (!v.IsString()) fail(who + ": \"" + key + "\" must be a string");
@@ -400,9 +400,10 @@ void Converter::decodeMeshoptViews() {
         const std::string who = "bufferView " + std::to_string(i) + " (" + kMeshopt + ")";
 #ifdef SHADERLAB_NO_MESHOPT
         // The portable build (cmake/Portable.cmake): Debian 11 has no static libmeshoptimizer.
-        fail(who + ": this shaderlab is the portable build, which cannot decode meshopt-compressed "
-                   "data; save the scene without EXT_meshopt_compression, or grade it with a shaderlab "
-                   "built from source");
+        fail(who +
+             ": this shaderlab is the portable build, which cannot decode meshopt-compressed "
+             "data; save the scene without EXT_meshopt_compression, or grade it with a shaderlab "
+             "built from source");
         (void)e;
         (void)total;
         (void)kMaxDecodedBytes;
