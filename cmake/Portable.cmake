@@ -30,12 +30,25 @@ function(shaderlab_static_archive var name package)
   set(${var} ${SHADERLAB_STATIC_${name}} PARENT_SCOPE)
 endfunction()
 
-# shaderlab_static_pkg(<PREFIX> <module> <package>): PkgConfig::<PREFIX> as pkg_check_modules
-# would make it, but linking the module's archive and those of its private dependencies.
+# shaderlab_static_pkg(<PREFIX> <module> <package> [ALSO <module>...]): PkgConfig::<PREFIX> as
+# pkg_check_modules would make it, but linking the module's archive and those of its private
+# dependencies (pkg-config --static), then those of the ALSO modules: dependencies that the
+# module's .pc names in Libs.private without their own. An archive listed twice is kept where it
+# comes last, after everything that needs it.
 function(shaderlab_static_pkg prefix module package)
+  cmake_parse_arguments(ARG "" "" "ALSO" ${ARGN})
   pkg_check_modules(${prefix} REQUIRED ${module})
+  set(names ${${prefix}_STATIC_LIBRARIES})
+  foreach(also IN LISTS ARG_ALSO)
+    string(MAKE_C_IDENTIFIER "${also}" also_prefix)
+    pkg_check_modules(SHADERLAB_${also_prefix} REQUIRED ${also})
+    list(APPEND names ${SHADERLAB_${also_prefix}_STATIC_LIBRARIES})
+  endforeach()
+  list(REVERSE names)
+  list(REMOVE_DUPLICATES names)
+  list(REVERSE names)
   set(libs)
-  foreach(name IN LISTS ${prefix}_STATIC_LIBRARIES)
+  foreach(name IN LISTS names)
     if(name IN_LIST SHADERLAB_GLIBC_LIBS)
       list(APPEND libs ${name})
     else()
@@ -51,7 +64,9 @@ function(shaderlab_static_pkg prefix module package)
 endfunction()
 
 shaderlab_static_pkg(STB stb libstb-dev)
-shaderlab_static_pkg(LIBARCHIVE libarchive libarchive-dev)
+# libarchive's zip writer brings its table of every writer, the xar one among them, and with it
+# libxml2, which needs ICU (28 MB of its data are the larger part of the program).
+shaderlab_static_pkg(LIBARCHIVE libarchive libarchive-dev ALSO libxml-2.0)
 shaderlab_static_pkg(XXHASH libxxhash libxxhash-dev)
 
 find_package(PNG REQUIRED)  # FindPNG and FindZLIB find libpng16.a and libz.a (the suffix above)

@@ -63,7 +63,7 @@ build_here() {
     build-essential cmake pkg-config ccache binutils xz-utils ca-certificates
     python3-glad python3-pkg-resources libegl-dev
     libglm-dev libstb-dev libpng-dev zlib1g-dev libdraco-dev libtinygltf-dev libxxhash-dev
-    libarchive-dev nettle-dev libacl1-dev liblzma-dev libzstd-dev liblz4-dev libbz2-dev libxml2-dev
+    libarchive-dev nettle-dev libacl1-dev liblzma-dev libzstd-dev liblz4-dev libbz2-dev libxml2-dev libicu-dev
   )
   say "installing Debian 11's compiler and libraries"
   { apt-get update -qq && apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null; } ||
