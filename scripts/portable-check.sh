@@ -4,8 +4,9 @@
 # -dev package, no Mesa) laid out as Gradescope's autograder image:
 #   1. the Gradescope bundle (`BINARY gradescope-bundle`, LAB) unpacked into /autograder/source, and
 #      its setup.sh run: it installs Mesa's run-time packages and nothing else;
-#   2. `grade reference_solutions --no-reference` on every lab: full marks against the goldens
-#      (drawn by another Mesa), with scripts/cross-mesa.py's figures for the record;
+#   2. `grade reference_solutions` on every lab, as Gradescope grades (the reference drawn on this
+#      Mesa too): full marks; and `--no-reference`, against the goldens drawn by another Mesa,
+#      with scripts/cross-mesa.py's figures for the record (not a failure: docs/grading.md);
 #   3. run_autograder on two uploads (LAB's reference files, its starter files) as Gradescope
 #      runs it: /autograder/submission in, /autograder/results/results.json out, with the points;
 #   4. `serve` answers its page on the loopback.
@@ -93,24 +94,29 @@ for suite in "${suites[@]}"; do
     continue
   fi
   added=$(comm -13 <(echo "$before") <(chroot_run "$root" "dpkg-query -W -f='\${Package}\n' | sort") | wc -l)
-  devs=$(chroot_run "$root" "dpkg-query -W -f='\${Package}\n' | grep -E -- '-dev\$|^gcc|^g\+\+|^cmake\$' | tr '\n' ' '")
+  devs=$(chroot_run "$root" "dpkg-query -W -f='\${Package}\n' | grep -E -- '-dev\$|^(gcc|g\+\+|cpp|make|cmake|binutils)(-[0-9]+)?\$' | tr '\n' ' '")
   [ -z "$devs" ] || fail "setup.sh installed build tools or -dev packages: $devs"
   mesa=$(chroot_run "$root" "dpkg-query -W -f='\${Version}' libgl1-mesa-dri")
   renderer=$(grep -m1 -i 'renderer' "$root.setup.log" | sed 's/^ *//')
   say "setup.sh: $added packages added (Mesa $mesa), no compiler; $renderer"
 
-  # 2. The reference solutions of every lab, against the goldens.
+  # 2. The reference solutions of every lab: graded as Gradescope grades (the reference drawn here
+  #    too), and against the goldens drawn by another Mesa (figures, for the record).
   mkdir -p "$root/root/course"
   cp -a "$checkout/labs" "$checkout/reference_solutions" "$root/root/course/"
-  t=$(now)
-  chroot_run --timeout 1800 "$root" "cd /root/course && /autograder/source/bin/shaderlab grade reference_solutions --no-reference --out /root/ref" \
-    >"$root.grade.log" 2>&1
-  rc=$?
-  score=$(grep -m1 -o 'score [0-9.]* */ *[0-9.]*' "$root.grade.log" || tail -n1 "$root.grade.log")
-  if ((rc != 0)); then fail "grade reference_solutions exit $rc ($score; log: $root.grade.log)"; fi
-  say "grade reference_solutions --no-reference: exit $rc, $score, $(chroot_minutes $(($(now) - t)))"
-  [ -f "$root/root/ref/report.json" ] && python3 scripts/cross-mesa.py "$root/root/ref/report.json" >"$root.cross-mesa.md" &&
-    say "cross-Mesa figures: $root.cross-mesa.md"
+  for how in reference goldens; do
+    t=$(now)
+    flag=""
+    [ $how = goldens ] && flag=--no-reference
+    chroot_run --timeout 1800 "$root" "cd /root/course && /autograder/source/bin/shaderlab grade reference_solutions $flag --out /root/ref-$how" \
+      >"$root.grade-$how.log" 2>&1
+    rc=$?
+    score=$(grep -m1 -o 'score [0-9.]* */ *[0-9.]*' "$root.grade-$how.log" || tail -n1 "$root.grade-$how.log")
+    say "grade reference_solutions against the $how: exit $rc, $score, $(chroot_minutes $(($(now) - t)))"
+    if [ $how = reference ] && ((rc != 0)); then fail "grade reference_solutions: exit $rc ($score; log: $root.grade-$how.log)"; fi
+  done
+  [ -f "$root/root/ref-goldens/report.json" ] && python3 scripts/cross-mesa.py "$root/root/ref-goldens/report.json" >"$root.cross-mesa.md" &&
+    say "cross-Mesa figures (against the goldens): $root.cross-mesa.md" && grep -E '^\| [0-9]' "$root.cross-mesa.md" | grep -v '| 10 / 10 |' | sed 's/^/    not full marks: /'
 
   # 3. run_autograder on the lab's reference and starter files, uploaded flat as students do.
   for upload in reference_solutions labs; do

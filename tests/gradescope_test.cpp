@@ -29,8 +29,8 @@ CommandRun shaderlab(const std::string& args) { return runCommand(quoted(SHADERL
 // The bundle of kLab, carrying this build's program, unpacked into <dir>/autograder/source.
 fs::path unpackedBundle(const fs::path& dir, const std::string& more = "") {
     const fs::path zip = dir / "autograder.zip";
-    const CommandRun r = shaderlab("gradescope-bundle --out " + quoted(zip) + " --lab " + kLab + " --binary " +
-                                   quoted(SHADERLAB_CLI) + " " + more);
+    const CommandRun r = shaderlab("gradescope-bundle --out " + quoted(zip) + " --lab " + kLab +
+                                   " --binary " + quoted(SHADERLAB_CLI) + " " + more);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     // This build is not the portable one, and the bundle says what that means.
     EXPECT_NE(r.output.find("is not a portable build (scripts/portable-build.sh)"), std::string::npos)
@@ -78,13 +78,15 @@ TEST(GradescopeBundle, WithoutAPortableProgramSaysHowToBuildOne) {
     r = shaderlab("gradescope-bundle --out " + quoted(dir / "b.zip") + " --lab " + kLab + " --binary " +
                   quoted(dir / "notes.txt"));
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_NE(r.output.find("notes.txt: --binary must be a shaderlab program (this is not a Linux executable)"),
-              std::string::npos)
+    EXPECT_NE(
+        r.output.find("notes.txt: --binary must be a shaderlab program (this is not a Linux executable)"),
+        std::string::npos)
         << r.output;
     r = shaderlab("gradescope-bundle --out " + quoted(dir / "c.zip") + " --lab " + kLab + " --binary " +
                   quoted(dir / "missing"));
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_NE(r.output.find("missing: --binary must be a shaderlab program (file not found)"), std::string::npos)
+    EXPECT_NE(r.output.find("missing: --binary must be a shaderlab program (file not found)"),
+              std::string::npos)
         << r.output;
 }
 
@@ -96,8 +98,10 @@ std::set<std::string> setupInstalls(const fs::path& dir, const fs::path& source,
     writeFile(fake / "apt-get", "#!/bin/sh\necho \"$@\" >> " + quoted(log) + "\n");
     writeFile(fake / "apt-cache", std::string("#!/bin/sh\nexit ") + (osmesa_packaged ? "0" : "100") + "\n");
     writeFile(fake / "sudo", "#!/bin/sh\nexec \"$@\"\n");
-    for (const char* tool : {"apt-get", "apt-cache", "sudo"}) fs::permissions(fake / tool, fs::perms::owner_all);
-    const CommandRun r = runCommand("PATH=" + quoted(fake) + ":\"$PATH\" bash " + quoted(source / "setup.sh"));
+    for (const char* tool : {"apt-get", "apt-cache", "sudo"})
+        fs::permissions(fake / tool, fs::perms::owner_all);
+    const CommandRun r =
+        runCommand("PATH=" + quoted(fake) + ":\"$PATH\" bash " + quoted(source / "setup.sh"));
     EXPECT_EQ(r.exit_code, 0) << r.output;
     // The last line of setup.sh: the bundled program starts and gets a context.
     EXPECT_NE(r.output.find("renderer"), std::string::npos) << r.output;
@@ -124,7 +128,8 @@ TEST(GradescopeBundle, SetupInstallsMesasRunTimePackagesOnly) {
     EXPECT_EQ(without, (std::set<std::string>{"libegl1", "libegl-mesa0", "libgl1-mesa-dri"}));
     // This machine's apt knows every name (Debian's names are Ubuntu's for these packages).
     for (const std::string& p : with)
-        EXPECT_EQ(runCommand("dpkg-query -W " + p + " || apt-cache show " + p + " >/dev/null").exit_code, 0) << p;
+        EXPECT_EQ(runCommand("dpkg-query -W " + p + " || apt-cache show " + p + " >/dev/null").exit_code, 0)
+            << p;
 }
 
 // Its run_autograder grades an upload (flat files, in a folder, as students upload a one-lab
