@@ -99,6 +99,9 @@ for suite in "${suites[@]}"; do
   mesa=$(chroot_run "$root" "dpkg-query -W -f='\${Version}' libgl1-mesa-dri")
   renderer=$(grep -m1 -i 'renderer' "$root.setup.log" | sed 's/^ *//')
   say "setup.sh: $added packages added (Mesa $mesa), no compiler; $renderer"
+  # EGL too: what renders where Mesa has no OSMesa (25.1 and later).
+  egl=$(chroot_run "$root" "/autograder/source/bin/shaderlab info --backend egl" 2>&1 | grep -m1 '^version' | sed 's/  */ /g')
+  if [ -n "$egl" ]; then say "EGL: $egl"; else fail "info --backend egl gave no context"; fi
 
   # 2. The reference solutions of every lab: graded as Gradescope grades (the reference drawn here
   #    too), and against the goldens drawn by another Mesa (figures, for the record).
