@@ -88,6 +88,7 @@ for suite in "${suites[@]}"; do
   unzip_into "$work/autograder.zip" "$root/autograder/source"
   cp "$root/autograder/source/run_autograder" "$root/autograder/run_autograder"
   before=$(chroot_run "$root" "dpkg-query -W -f='\${Package}\n' | sort")
+  t=$(now)
   if ! chroot_run --timeout 900 "$root" "cd /autograder/source && bash ./setup.sh" >"$root.setup.log" 2>&1; then
     fail "setup.sh (log: $root.setup.log)"
     tail -n 20 "$root.setup.log"
@@ -98,7 +99,7 @@ for suite in "${suites[@]}"; do
   [ -z "$devs" ] || fail "setup.sh installed build tools or -dev packages: $devs"
   mesa=$(chroot_run "$root" "dpkg-query -W -f='\${Version}' libgl1-mesa-dri")
   renderer=$(grep -m1 -i 'renderer' "$root.setup.log" | sed 's/^ *//')
-  say "setup.sh: $added packages added (Mesa $mesa), no compiler; $renderer"
+  say "setup.sh: $(chroot_minutes $(($(now) - t))), $added packages added (Mesa $mesa), no compiler; $renderer"
   # EGL too: what renders where Mesa has no OSMesa (25.1 and later).
   egl=$(chroot_run "$root" "/autograder/source/bin/shaderlab info --backend egl" 2>&1 | grep -m1 '^version' | sed 's/  */ /g')
   if [ -n "$egl" ]; then say "EGL: $egl"; else fail "info --backend egl gave no context"; fi
