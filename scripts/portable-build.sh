@@ -149,7 +149,7 @@ if [ -z "$root" ]; then
 fi
 cleanup() {
   chroot_unmount_all
-  if ((fresh)); then rm -rf --one-file-system "$root"; fi
+  if ((fresh)); then rm -rf --one-file-system "$root" "$root.log"; fi
 }
 trap cleanup EXIT
 trap 'exit 130' INT TERM
