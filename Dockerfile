@@ -13,6 +13,19 @@
 #
 # The course (the folder holding labs/) is found from the working folder upward, like git finds
 # its repository; /course is the working folder. docs/students.md walks through it.
+#
+# The portable binary (scripts/portable-build.sh, without a chroot; docs/instructors.md), for any
+# x86-64 Linux with glibc 2.31 or later: built on Debian 11, written to ./portable/shaderlab:
+#   docker build --target portable-binary --output portable .
+# (BuildKit, Docker's default builder, builds only the stages a target needs.)
+FROM debian:bullseye-slim AS portable
+COPY . /opt/shaderlab
+RUN bash /opt/shaderlab/scripts/portable-build.sh --here /out
+
+FROM scratch AS portable-binary
+COPY --from=portable /out/shaderlab /shaderlab
+
+# The student's image (the default target).
 FROM debian:trixie-slim
 
 COPY . /opt/shaderlab

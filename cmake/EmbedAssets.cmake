@@ -1,7 +1,7 @@
 # Writes a C++ file holding the files of a web page as byte arrays, with the table that
 # shaderlab::serve::findAsset() reads (framework/serve/include/shaderlab/serve/routes.h). Run as
 #   cmake -DOUT=<file.cpp> -DASSETS=<file|file|...> -P EmbedAssets.cmake
-cmake_minimum_required(VERSION 3.22)
+cmake_minimum_required(VERSION 3.18...3.22)
 string(REPLACE "|" ";" ASSETS "${ASSETS}")
 set(arrays "")
 set(table "")
@@ -53,5 +53,5 @@ const Asset* findAsset(const std::string& name) {
 
 }  // namespace shaderlab::serve
 ")
-file(COPY_FILE "${OUT}.tmp" "${OUT}" ONLY_IF_DIFFERENT)
+execute_process(COMMAND ${CMAKE_COMMAND} -E copy_if_different "${OUT}.tmp" "${OUT}")
 file(REMOVE "${OUT}.tmp")

@@ -289,6 +289,7 @@ struct GradescopeBundleArgs {
     CommonOptions common;
     std::string out_zip;
     std::string reference_root;          // empty: reference_solutions beside labs/
+    std::string binary;                  // the shaderlab to pack; empty: this one, if portable
     std::string visibility = "visible";  // of the results: visible, hidden, after_due_date, after_published
     std::string tests = "goals";         // one Gradescope test per learning goal, or per scene ("scenes")
     double timeout_s = 60.0;

@@ -474,8 +474,12 @@ CLI::App* addSimilarity(CLI::App& app, SimilarityArgs* args) {
 CLI::App* addGradescopeBundle(CLI::App& app, GradescopeBundleArgs* args) {
     CLI::App* cmd = app.add_subcommand(
         "gradescope-bundle",
-        "write the autograder zip of a Gradescope assignment (setup.sh, run_autograder, labs)");
+        "write the autograder zip of a Gradescope assignment (setup.sh, run_autograder, a portable "
+        "shaderlab, labs)");
     cmd->add_option("--out", args->out_zip, "the zip to write, e.g. autograder.zip")->required();
+    cmd->add_option("--binary", args->binary,
+                    "the shaderlab the autograder runs: a portable build (scripts/portable-build.sh); "
+                    "default: this program, when it is one");
     cmd->add_option("--reference", args->reference_root,
                     "reference solutions folder (default: reference_solutions beside labs/)");
     cmd->add_option("--visibility", args->visibility, "when students see the results")

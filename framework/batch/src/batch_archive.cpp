@@ -263,7 +263,10 @@ bool writeZip(const std::string& zip_path, const std::vector<ZipItem>& items, st
             if (n < 0) return fail(item.source_path + ": " + std::strerror(errno));
         }
         archive_entry* entry = archive_entry_new();
-        archive_entry_set_pathname_utf8(entry, item.name.c_str());
+        // The name in UTF-8 and, where the locale can spell it, in the locale's form too: libarchive
+        // 3.4 (Debian 11's, in the portable build) reads only the latter, and crashes without it.
+        if (!archive_entry_update_pathname_utf8(entry, item.name.c_str()))
+            archive_entry_set_pathname(entry, item.name.c_str());
         archive_entry_set_filetype(entry, AE_IFREG);
         archive_entry_set_perm(entry, item.executable ? 0755 : 0644);
         archive_entry_set_size(entry, static_cast<la_int64_t>(bytes.size()));

@@ -8,7 +8,9 @@
 // callbacks of gltf_loader.cpp.
 // Buffers are read as little-endian, which is what glTF stores and what the hosts we run on are.
 #include <draco/compression/decode.h>
+#ifndef SHADERLAB_NO_MESHOPT
 #include <meshoptimizer.h>
+#endif
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -219,8 +221,8 @@ std::uint64_t extensionNumber(const tinygltf::Value& object, const char* key, co
     return static_cast<std::uint64_t>(d);
 }
 
-std::string extensionString(const tinygltf::Value& object, const char* key, const std::string& who,
-                            const std::string& fallback) {
+[[maybe_unused]] std::string extensionString(const tinygltf::Value& object, const char* key,
+                                             const std::string& who, const std::string& fallback) {
     if (!object.Has(key)) return fallback;
     const tinygltf::Value& v = object.Get(key);
     if (!v.IsString()) fail(who + ": \"" + key + "\" must be a string");
@@ -396,6 +398,16 @@ void Converter::decodeMeshoptViews() {
         if (ext == view.extensions.end()) continue;
         const tinygltf::Value& e = ext->second;
         const std::string who = "bufferView " + std::to_string(i) + " (" + kMeshopt + ")";
+#ifdef SHADERLAB_NO_MESHOPT
+        // The portable build (cmake/Portable.cmake): Debian 11 has no static libmeshoptimizer.
+        fail(who +
+             ": this shaderlab is the portable build, which cannot decode meshopt-compressed "
+             "data; save the scene without EXT_meshopt_compression, or grade it with a shaderlab "
+             "built from source");
+        (void)e;
+        (void)total;
+        (void)kMaxDecodedBytes;
+#else
         if (!e.IsObject()) fail(who + ": the extension must be an object");
         const std::uint64_t buffer = extensionNumber(e, "buffer", who, true);
         const std::uint64_t offset = extensionNumber(e, "byteOffset", who, false, 0);
@@ -452,6 +464,7 @@ void Converter::decodeMeshoptViews() {
         }
         if (mode == "ATTRIBUTES" && view.byteStride == 0) meshopt_strides_[static_cast<int>(i)] = stride;
         decoded_views_[static_cast<int>(i)] = std::move(out);
+#endif
     }
 }
 

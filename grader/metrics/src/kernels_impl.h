@@ -695,7 +695,13 @@ void ssimRow(const double* const* s_moments, const double* const* d_moments, int
 // One vector from two halves (in registers: storing the halves and loading the whole would
 // stall on store forwarding).
 inline F joinHalves(HalfF low, HalfF high) {
-#if defined(__AVX__)
+#if !defined(__clang__) && __GNUC__ < 12
+    // GCC before 12 (Debian 11's GCC 10 builds the portable binary) has no __builtin_shufflevector.
+    F out;
+    std::memcpy(&out, &low, sizeof low);
+    std::memcpy(reinterpret_cast<char*>(&out) + sizeof low, &high, sizeof high);
+    return out;
+#elif defined(__AVX__)
     return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
 #else
     return __builtin_shufflevector(low, high, 0, 1, 2, 3);
