@@ -37,10 +37,21 @@ std::string shownName(const std::string& name) {
     return out;
 }
 
-// "its folder holds: a.frag, notes.txt" (at most six names), or "its folder is empty".
-std::string folderContents(const fs::path& dir) {
+// Whether `p` lies inside `root`, links resolved: a folder that is a link out is not listed.
+bool inside(const fs::path& root, const fs::path& p) {
     std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return "its folder is not there";
+    const fs::path r = fs::canonical(root, ec), q = fs::canonical(p, ec);
+    if (ec) return false;
+    auto a = r.begin(), b = q.begin();
+    for (; a != r.end(); ++a, ++b)
+        if (b == q.end() || *a != *b) return false;
+    return true;
+}
+
+// "its folder holds: a.frag, notes.txt" (at most six names), or "its folder is empty".
+std::string folderContents(const fs::path& root, const fs::path& dir) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec) || !inside(root, dir)) return "its folder is not there";
     std::vector<std::string> names;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
         names.push_back(it->path().filename().string());
@@ -68,7 +79,8 @@ std::string findIgnoringCase(const std::string& root, const std::string& relativ
     fs::path dir(root), found;
     std::error_code ec;
     for (const fs::path& part : wanted) {
-        if (part == "." || part == "..") return {};
+        // Never through a link: what it leads to may lie outside the root, and is not listed.
+        if (part == "." || part == ".." || (!found.empty() && fs::is_symlink(dir, ec))) return {};
         const std::string key = lowered(part.string());
         std::string match;
         int matches = 0;
@@ -119,7 +131,7 @@ FileText readStudentFile(const std::string& root, const std::string& relative, c
     if (!ec) t.error = replaced(t.error, "outside " + canonical_root.string(), "outside the submission");
     if (root.size() > 1) t.error = replaced(t.error, root, "the submission");
     if (t.missing && t.error == shown + ": file not found")
-        t.error += " (" + folderContents((fs::path(root) / relative).parent_path()) + ")";
+        t.error += " (" + folderContents(root, (fs::path(root) / relative).parent_path()) + ")";
     t.path = shown;
     return t;
 }

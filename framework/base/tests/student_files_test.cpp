@@ -70,6 +70,15 @@ TEST_F(StudentFilesTest, ProblemsNameTheFileAsTheStudentKnowsIt) {
     EXPECT_FALSE(t.ok);
     EXPECT_NE(t.error.find("phong.vert: resolves outside the submission"), std::string::npos) << t.error;
     EXPECT_EQ(t.error.find(root_.string()), std::string::npos) << t.error;
+    // A lab folder that is a link out: nothing behind it is listed or found by its case.
+    fs::create_directories(root_ / "elsewhere");
+    fs::create_directories(root_ / "sub");
+    std::ofstream(root_ / "elsewhere" / "Secret.frag") << "x";
+    fs::create_directory_symlink(root_ / "elsewhere", root_ / "sub" / "02-toon");
+    const std::string sub = (root_ / "sub").string();
+    EXPECT_EQ(shaderlab::findIgnoringCase(sub, "02-toon/secret.frag"), "");
+    t = shaderlab::readStudentFile(sub, "02-toon/toon.frag", "toon.frag", 1 << 20);
+    EXPECT_EQ(t.error.find("Secret"), std::string::npos) << t.error;
     // A file found by its case is read inside the submission like any other.
     fs::create_symlink("/etc/passwd", root_ / "01-phong" / "Lit.frag");
     std::string note;
