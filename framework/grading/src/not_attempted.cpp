@@ -53,6 +53,7 @@ bool untouchedStarter(const LabSpec& spec, const std::string& submission_dir, st
     std::error_code ec;
     if (fs::equivalent(fs::path(submission_dir) / spec.id, spec.lab_dir, ec)) return false;
     std::vector<std::string> present;
+    bool work_left = false;  // a TODO(student) marker: the starter asks for work (docs/authoring.md)
     for (const std::string& name : spec.student_files) {
         const FileText mine = readStudentFile(submission_dir, spec.id + "/" + name, name, kMaxBytes);
         if (!mine.ok) {
@@ -62,8 +63,9 @@ bool untouchedStarter(const LabSpec& spec, const std::string& submission_dir, st
         const FileText starter = readFile((fs::path(spec.lab_dir) / name).string(), kMaxBytes);
         if (!starter.ok || normalised(starter.text) != normalised(mine.text)) return false;
         present.push_back(name);
+        work_left = work_left || starter.text.find("TODO(student)") != std::string::npos;
     }
-    if (present.empty()) return false;
+    if (present.empty() || !work_left) return false;
     *message = "not attempted: " + listed(present) + (present.size() == 1 ? " is" : " are") +
                " the starter code as the lab gives it, unchanged; nothing was drawn or graded (0 points). "
                "Write your solution in " +
