@@ -309,7 +309,9 @@ bool studentNeed(const StudentResults& s, const std::vector<LabClass>& labs, dou
         if (status == "timeout") timeouts.push_back(lab.id);
         if (status == "compile_error" || status == "link_error") not_compiled.push_back(lab.id);
         if (status == "crashed") crashed.push_back(lab.id);
-        if (status == "missing") (notHandedIn(s, lab.id) ? missing : files_missing).push_back(lab.id);
+        // A refused archive's labs are all missing: the refusal is the reason, said below.
+        if (status == "missing" && n.status == "graded")
+            (notHandedIn(s, lab.id) ? missing : files_missing).push_back(lab.id);
         if (status == "not_attempted") not_attempted.push_back(lab.id);
         if (const grader::ReportLab* l = reportLab(s, lab.id)) {
             n.goals_met += goalsMet(*l, lab);
@@ -400,7 +402,7 @@ std::vector<std::string> classLabs(const ClassInput& in) {
     std::vector<std::string> kept;
     for (const std::string& id : ids)
         for (const StudentResults& s : in.students)
-            if (labStatus(s, id) != "missing" || !notHandedIn(s, id)) {
+            if (s.row.status == "graded" && (labStatus(s, id) != "missing" || !notHandedIn(s, id))) {
                 kept.push_back(id);
                 break;
             }

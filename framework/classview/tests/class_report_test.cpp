@@ -276,7 +276,7 @@ TEST(ClassReport, NeedsHelpOrder) {
     EXPECT_EQ(dave.report_html, "dave/report.html");
     ASSERT_FALSE(dave.reasons.empty());
     EXPECT_NE(dave.reasons[0].find("timed out"), std::string::npos);
-    EXPECT_NE(r.needs_help[1].reasons[0].find("bad_archive"), std::string::npos);
+    EXPECT_EQ(r.needs_help[1].reasons, std::vector<std::string>{"archive refused (bad_archive)"});
     EXPECT_EQ(r.needs_help[2].goals_met, 1);
     EXPECT_EQ(r.needs_help[2].not_compiled, 1);
     EXPECT_EQ(r.needs_help[3].not_handed_in, 1);
@@ -308,17 +308,23 @@ TEST(ClassReport, ReteachFirstIsTheGoalsMostFailedOnTheStudentsOwnWork) {
     EXPECT_EQ(aggregateClass(in, 2).reteach.size(), 2u);
 }
 
+// A graded student whose report was read, its labs left to the caller.
+StudentResults gradedStudent(const std::string& name) {
+    StudentResults s;
+    s.row.student = name;
+    s.row.status = "graded";
+    s.row.report = name + "/report.json";
+    s.has_report = true;
+    return s;
+}
+
 // In memory: three students, goals P, Q, R; one mistake "m" behind both P and Q.
 TEST(ClassReport, ReteachFoldsGoalsWithTheSameMistake) {
     ClassInput in;
     in.labs = {"03-lab"};
     const auto student = [&](const std::string& name, bool p, bool q, bool r, const std::string& mp,
                              const std::string& mq) {
-        StudentResults s;
-        s.row.student = name;
-        s.row.status = "graded";
-        s.row.report = name + "/report.json";
-        s.has_report = true;
+        StudentResults s = gradedStudent(name);
         grader::ReportLab l;
         l.id = "03-lab";
         l.status = p && q && r ? "passed" : "failed";
@@ -349,11 +355,7 @@ TEST(ClassReport, ReteachFoldsGoalsWithTheSameMistake) {
 // recognised on both scenes, as a mistake in G's work shows wherever G's work is drawn.
 StudentResults dependentStudent(const std::string& name, bool g_met, bool h_met, bool h_because,
                                 const std::string& mistake) {
-    StudentResults s;
-    s.row.student = name;
-    s.row.status = "graded";
-    s.row.report = name + "/report.json";
-    s.has_report = true;
+    StudentResults s = gradedStudent(name);
     grader::ReportLab l;
     l.id = "04-lab";
     l.max_score = 2;
@@ -443,6 +445,11 @@ TEST(ClassReport, TheClassLabsAreThoseHandedInUnlessNamed) {
     f.add("alice", "graded",
           {lab1("passed", true, true, true), lab2("passed", true, true), missingLab("09-lab")});
     f.add("bob", "graded", {lab1("passed", true, true, true), missingLab("02-lab"), missingLab("09-lab")});
+    // A refused archive: every lab missing, with the refusal as their message.
+    std::vector<grader::ReportLab> refused = {missingLab("01-lab"), missingLab("02-lab"),
+                                              missingLab("09-lab")};
+    for (grader::ReportLab& l : refused) l.message = "carl.zip: not a zip archive";
+    f.add("carl", "bad_archive", refused);
     for (batch::SummaryRow& row : f.summary.rows) row.max_total += 10;  // 09-lab's 10 points
     f.write();
     ClassReport r = readClass(f);
@@ -450,17 +457,19 @@ TEST(ClassReport, TheClassLabsAreThoseHandedInUnlessNamed) {
     EXPECT_EQ(r.labs[1].id, "02-lab");
     EXPECT_DOUBLE_EQ(r.max_total, 6.0);
     // Alice has every point of the class's labs: nothing to help with. Bob did not hand in 02-lab.
-    ASSERT_EQ(r.needs_help.size(), 1u);
-    EXPECT_EQ(r.needs_help[0].student, "bob");
-    EXPECT_EQ(r.needs_help[0].reasons, std::vector<std::string>{"not handed in: 02-lab"});
-    EXPECT_DOUBLE_EQ(r.needs_help[0].max_total, 6.0);
+    ASSERT_EQ(r.needs_help.size(), 2u);
+    EXPECT_EQ(r.needs_help[0].student, "carl");
+    EXPECT_EQ(r.needs_help[0].reasons, std::vector<std::string>{"archive refused (bad_archive)"});
+    EXPECT_EQ(r.needs_help[1].student, "bob");
+    EXPECT_EQ(r.needs_help[1].reasons, std::vector<std::string>{"not handed in: 02-lab"});
+    EXPECT_DOUBLE_EQ(r.needs_help[1].max_total, 6.0);
 
     f.summary.labs_named = true;
     f.write();
     r = readClass(f);
     ASSERT_EQ(r.labs.size(), 3u);
     EXPECT_EQ(r.labs[2].handed_in, 0);
-    EXPECT_EQ(r.needs_help.size(), 2u);
+    EXPECT_EQ(r.needs_help.size(), 3u);
 }
 
 TEST(ClassReport, MalformedReportIsNamedAndTheOthersCounted) {

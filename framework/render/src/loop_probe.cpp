@@ -4,7 +4,16 @@
 
 #include <algorithm>
 
+#include "uniform_values.h"
+
 namespace shaderlab::render_detail {
+
+bool hasLoop(const ShaderProgram& program) {
+    for (int stage : {0, 1})
+        for (const char* word : {"for", "while", "do"})
+            if (mentionsIdentifier(program.preparedText(stage), word)) return true;
+    return false;
+}
 
 bool drawProbingLoops(GLuint loop_guard, int width, int height, const std::function<void()>& draw) {
     if (!loop_guard || width <= 0 || height <= 0) {

@@ -14,11 +14,16 @@
 #include <functional>
 
 #include "shaderlab/gl/gl.h"
+#include "shaderlab/render/shader_program.h"
 
 namespace shaderlab::render_detail {
 
 // Pixels per strip, at most (the strip is at least two rows high).
 constexpr int kProbePixels = 2048;
+
+// Whether either stage's text holds a `for`, `while` or `do` (a comment that says one counts too:
+// the probe then costs a little for nothing).
+bool hasLoop(const ShaderProgram& program);
 
 // Runs `draw` (every draw call of one face of a pass, its target bound and cleared) once per strip
 // of a `width` x `height` target, with the scissor test on that strip, until a strip leaves a

@@ -150,8 +150,9 @@ void LabRunner::drawFaces(const PassRun& run, int write) {
     }
     const bool masked = drawn_buffers != all_buffers;
     // A program's first draw of the lab goes in strips, so that an endless loop costs one strip
-    // (loop_probe.h).
-    const bool probe = prog.loopGuarded() && probed_programs_.insert(programKey(pass)).second;
+    // (loop_probe.h); a program with no loop needs none.
+    const bool probe =
+        prog.loopGuarded() && hasLoop(prog) && probed_programs_.insert(programKey(pass)).second;
     for (int face = 0; face < target.faces(); ++face) {
         glBindFramebuffer(GL_FRAMEBUFFER, target.fbos.at({write, face}));
         glViewport(0, 0, tspec.width, tspec.height);
