@@ -113,7 +113,7 @@ class PlantedClass(unittest.TestCase):
                 self.assertEqual(l["score"], 0.0)
                 self.assertEqual(l["scenes"], [])
                 self.assertEqual(l["goals"], [])
-                self.assertIn("not attempted", l["message"])
+                self.assertIn("the lab's starter code, unchanged", l["message"])
         # A comment of one's own is a change: graded (and, the starter drawing what it draws, failed).
         folder = os.path.join(self.dir, "commented", "01-phong")
         shutil.copytree(os.path.join(LABS, "01-phong"), folder, ignore=shutil.ignore_patterns("golden", "hints"))

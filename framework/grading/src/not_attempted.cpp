@@ -66,9 +66,10 @@ bool untouchedStarter(const LabSpec& spec, const std::string& submission_dir, st
         work_left = work_left || starter.text.find("TODO(student)") != std::string::npos;
     }
     if (present.empty() || !work_left) return false;
-    *message = "not attempted: " + listed(present) + (present.size() == 1 ? " is" : " are") +
-               " the starter code as the lab gives it, unchanged; nothing was drawn or graded (0 points). "
-               "Write your solution in " +
+    // The status says "not attempted"; the message says why, and what to do.
+    *message = listed(present) + (present.size() == 1 ? " is" : " are") +
+               " the lab's starter code, unchanged: nothing was drawn or graded (0 points). Write your "
+               "solution in " +
                (present.size() == 1 ? "it" : "them") + " and grade again";
     return true;
 }
