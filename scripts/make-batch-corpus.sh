@@ -8,7 +8,8 @@
 # Of COUNT submissions, about:
 #   50% correct: exact copies of reference_solutions (they grade once, then are reused);
 #   10% correct, each with its own comment added (every one graded on its own);
-#   20% wrong: the untouched starter code (identical across students), or a wrong colour;
+#   20% wrong: the untouched starter code (identical across students: "not_attempted"), or a
+#       wrong colour;
 #   20% hostile: an endless loop, binary garbage, a symlink to /etc/passwd, a zip-slip, a zip
 #       bomb, an empty zip, a file that is not a zip.
 set -euo pipefail

@@ -5,7 +5,7 @@
 # submitted alike is graded once for the whole class; a last job merges the shards into RESULTS/all.
 #
 # Usage, from the course folder (where build/framework/shaderlab is):
-#   jobid=$(sbatch --parsable --array=1-8 scripts/slurm-batch.sh SUBMISSIONS RESULTS [batch flags...])
+#   jobid=$(sbatch --parsable --array=1-8 scripts/slurm-batch.sh SUBMISSIONS RESULTS --lab LAB... [batch flags...])
 #   sbatch --dependency=afterany:$jobid --wrap \
 #     "${SHADERLAB:-build/framework/shaderlab} merge RESULTS/shard-* --out RESULTS/all"
 # Set SHADERLAB to use another shaderlab program. See docs/instructors.md, "Slurm job arrays".
@@ -20,7 +20,7 @@
 #
 # Running one task again (failed, cancelled, or out of time; it resumes where it stopped):
 #   scontrol requeue JOBID_4                                      (the same task, same log)
-#   sbatch --array=4 scripts/slurm-batch.sh SUBMISSIONS RESULTS   (when it never ran)
+#   sbatch --array=4 scripts/slurm-batch.sh SUBMISSIONS RESULTS --lab LAB...   (when it never ran)
 # and then the merge line again. Logs are appended to (--open-mode=append), so a requeued task
 # keeps its first run's log above the second's.
 #

@@ -168,10 +168,20 @@ TEST(GradescopeBundle, RunAutograderWritesResultsInASimulatedLayout) {
         sum += t["max_score"].get<double>();
     }
     EXPECT_NEAR(sum, 10.0, 1e-9);
+    // The starter handed in untouched is not attempted: nothing drawn, nothing to show.
     const json starter = grade((kSource / "labs" / kLab).string(), {"phong.vert", "phong.frag"});
-    EXPECT_LT(starter["score"].get<double>(), 10.0);
+    EXPECT_DOUBLE_EQ(starter["score"].get<double>(), 0.0);
+    ASSERT_EQ(starter["tests"].size(), 1u) << starter.dump();
+    EXPECT_NE(
+        starter["tests"][0]["output"].get<std::string>().find("not_attempted: phong.vert and phong.frag are "
+                                                              "the lab's starter code, unchanged"),
+        std::string::npos)
+        << starter.dump(1);
+    const json wrong =
+        grade((kSource / "tests/corpus" / kLab / "gouraud").string(), {"phong.vert", "phong.frag"});
+    EXPECT_LT(wrong["score"].get<double>(), 10.0);
     bool failed = false;
-    for (const json& t : starter["tests"]) {
+    for (const json& t : wrong["tests"]) {
         if (t["status"] != "failed") continue;
         failed = true;
         // A failing scene shows the pictures: the student's, the reference's, the difference.

@@ -46,6 +46,8 @@ std::string defaultReferenceRootOf(const std::string& labs_root) {
 bool readBatchLabs(const BatchArgs& args, batch::BatchSettings* settings, std::vector<batch::LabPlan>* labs) {
     if (!resolveLabsRoot(args.common, &settings->labs_root)) return false;
     settings->all_lab_ids = listLabIds(settings->labs_root);
+    // Named labs are graded in every submission; otherwise each submission's own (plan.h).
+    settings->labs_named = !args.common.labs.empty();
     const std::vector<std::string> ids = args.common.labs.empty() ? settings->all_lab_ids : args.common.labs;
     if (ids.empty()) {
         std::cerr << "shaderlab: no labs found in " << settings->labs_root << "\n";
@@ -73,6 +75,13 @@ int runBatch(const BatchArgs& args) {
     int shard_k = 1, shard_n = 1;
     if (!batch::parseShard(args.shard, &shard_k, &shard_n)) {
         std::cerr << "shaderlab: --shard " << args.shard << ": expected K/N with 1 <= K <= N, e.g. 2/8\n";
+        return 2;
+    }
+    // Each shard would otherwise take the labs its own share hands in, and shards with other
+    // labs (and totals) do not merge.
+    if (!args.shard.empty() && args.common.labs.empty()) {
+        std::cerr << "shaderlab: --shard needs --lab: name the assignment's labs, so that every shard "
+                     "grades and totals the same ones\n";
         return 2;
     }
     std::string error;

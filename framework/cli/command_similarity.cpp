@@ -94,7 +94,12 @@ void printSummary(const similarity::SimilarityReport& report, std::size_t curren
     std::printf("similarity: %zu submission%s", current, current == 1 ? "" : "s");
     if (earlier) std::printf(" and %zu of earlier classes", earlier);
     std::printf(", %zu labs, %zu documents compared in %.1f s\n", report.labs.size(), documents, seconds);
+    std::size_t unused = 0;
     for (const auto& s : report.labs) {
+        if (s.documents == 0) {  // a lab no one handed in says nothing
+            ++unused;
+            continue;
+        }
         std::size_t largest = 0;
         for (const auto& c : report.clusters)
             if (c.lab == s.lab) largest = std::max(largest, c.students.size());
@@ -103,6 +108,7 @@ void printSummary(const similarity::SimilarityReport& report, std::size_t curren
         if (largest) std::printf(" (largest: %zu students)", largest);
         std::printf("\n");
     }
+    if (unused) std::printf("  (%zu labs no one handed in)\n", unused);
     if (!report.notes.empty()) {
         std::printf("%zu notes (files left out, zips skipped); the first:\n  %s\n", report.notes.size(),
                     report.notes.front().c_str());
@@ -145,6 +151,7 @@ int runSimilarity(const SimilarityArgs& args) {
 
     similarity::SimilarityOptions options;
     options.threshold = args.threshold;
+    options.length_margin = args.length_margin;
     options.min_shared = args.min_shared;
     options.jobs = args.jobs;
     options.k = args.kgram;

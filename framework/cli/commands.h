@@ -268,7 +268,8 @@ struct SimilarityArgs {
     std::string submissions_dir;         // SUBMISSIONS/<student>/<lab>/<files>, folders or zips
     std::string out_dir;                 // index.html, pairs.json, pairs/<lab>/<n>.html
     std::vector<std::string> earlier;    // earlier classes' submissions folders (candidates only)
-    double threshold = 0.75;             // flag at this score or above
+    double threshold = 0.75;             // flag at this score or above (plus length_margin / sqrt(n))
+    double length_margin = 0.5;          // how much more a short document must share (similarity.h)
     std::size_t min_shared = 10;         // and at least this many shared fingerprints
     int jobs = 0;                        // labs at once; 0: the number of cores
     std::size_t max_views = 200;         // side-by-side pages per lab

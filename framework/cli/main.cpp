@@ -39,12 +39,17 @@ std::vector<std::string> debugViewList() {
     return names;
 }
 
+// Where the labs come from when --labs is not given (defaultLabsRoot, shaderlab/base/paths.h).
+const char* const kLabsHelp =
+    "folder holding the labs (default: $SHADERLAB_LABS, else the labs/ folder of the course found from the "
+    "working folder upward)";
+
 void addCommon(CLI::App* cmd, CommonOptions* common) {
     cmd->add_option("--backend", common->backend,
                     "OpenGL context backend: auto (OSMesa where it is installed, else EGL), osmesa or egl")
         ->check(CLI::IsMember({"auto", "osmesa", "egl"}))
         ->capture_default_str();
-    cmd->add_option("--labs", common->labs_root, "folder holding the labs (default: the bundled labs/)");
+    cmd->add_option("--labs", common->labs_root, kLabsHelp);
     cmd->add_option("--lab", common->labs, "lab id, e.g. 01-phong (repeatable; default: all labs)");
 }
 
@@ -89,7 +94,7 @@ CLI::App* addStart(CLI::App& app, StartArgs* args) {
     cmd->add_option("lab", args->lab, "lab id, e.g. 01-phong")->required();
     cmd->add_option("--into", args->into, "folder to copy into (default: work/ beside labs/)");
     cmd->add_flag("--force", args->force, "overwrite files already there with the starter code");
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -104,7 +109,7 @@ CLI::App* addCheck(CLI::App& app, CheckArgs* args) {
     addReferenceCache(cmd, &args->cache_dir, &args->no_cache);
     addLimits(cmd, &args->limits, "seconds the lab may take to draw its scenes");
     cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -141,7 +146,7 @@ CLI::App* addView(CLI::App& app, ViewArgs* args) {
         ->check(CLI::IsMember(debugViewList()))
         ->capture_default_str();
     cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -167,7 +172,7 @@ CLI::App* addServe(CLI::App& app, ServeArgs* args) {
         ->capture_default_str();
     addLimits(cmd, &args->limits, "seconds the lab may take to draw its scenes when graded (as `check`)");
     cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -183,7 +188,7 @@ CLI::App* addWatch(CLI::App& app, WatchArgs* args) {
     cmd->add_option("--max-checks", args->max_checks, "stop after N checks (default: until Ctrl-C)")
         ->check(CLI::Range(1, 1000000));
     cmd->add_option("--backend", args->check.common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
-    cmd->add_option("--labs", args->check.common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->check.common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -258,7 +263,7 @@ CLI::App* addCorpusAddCase(CLI::App* corpus, CorpusAddCaseArgs* args) {
         ->required();
     cmd->add_option("--corpus", args->corpus_root, "folder of <lab>/cases.json (default: tests/corpus)");
     cmd->add_option("--reference", args->reference_root, "reference solutions folder");
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -274,7 +279,7 @@ CLI::App* addNewLab(CLI::App& app, NewLabArgs* args) {
     cmd->add_option("--reference", args->reference_root,
                     "reference solutions folder (default: reference_solutions beside labs/)");
     cmd->add_option("--corpus", args->corpus_root, "folder of <lab>/cases.json (default: tests/corpus)");
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -293,7 +298,7 @@ CLI::App* addLabCheck(CLI::App& app, LabCheckArgs* args) {
         ->check(CLI::Range(0.1, 600.0))
         ->capture_default_str();
     cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -359,7 +364,7 @@ CLI::App* addSceneSweep(CLI::App& app, SceneSweepArgs* args) {
     cmd->add_option("--reference", args->reference_root,
                     "reference solutions folder (default: reference_solutions beside labs/)");
     cmd->add_option("--backend", args->common.backend)->check(CLI::IsMember({"auto", "osmesa", "egl"}));
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     return cmd;
 }
 
@@ -396,6 +401,9 @@ CLI::App* addBatch(CLI::App& app, BatchArgs* args) {
         ->check(CLI::Range(1, 1 << 20))
         ->capture_default_str();
     addCommon(cmd, &args->common);
+    cmd->get_option("--lab")->description(
+        "lab id, e.g. 01-phong (repeatable): grade these labs in every submission and total over them "
+        "(default: each submission's labs that it hands in, totalled over those the class hands in)");
     return cmd;
 }
 
@@ -448,8 +456,14 @@ CLI::App* addSimilarity(CLI::App& app, SimilarityArgs* args) {
         ->required();
     cmd->add_option("--earlier", args->earlier,
                     "submissions folder of an earlier year, compared with this class only (repeatable)");
-    cmd->add_option("--threshold", args->threshold, "flag a pair at this score (0..1) or above")
+    cmd->add_option("--threshold", args->threshold,
+                    "flag a pair at this score (0..1) plus --length-margin / sqrt(n) or above, n the smaller "
+                    "document's fingerprints")
         ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
+    cmd->add_option("--length-margin", args->length_margin,
+                    "how much more a short document must share: 0.5 asks 10 points more of 25 fingerprints")
+        ->check(CLI::Range(0.0, 5.0))
         ->capture_default_str();
     cmd->add_option("--min-shared", args->min_shared, "and only when it shares this many fingerprints")
         ->check(CLI::Range(std::size_t(1), std::size_t(1000000)))
@@ -466,7 +480,7 @@ CLI::App* addSimilarity(CLI::App& app, SimilarityArgs* args) {
         ->capture_default_str();
     cmd->add_option("--jobs,-j", args->jobs, "labs compared at once (default: the number of cores)")
         ->check(CLI::Range(1, 256));
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     cmd->add_option("--lab", args->common.labs, "lab id (repeatable; default: all labs)");
     return cmd;
 }
@@ -491,7 +505,7 @@ CLI::App* addGradescopeBundle(CLI::App& app, GradescopeBundleArgs* args) {
     cmd->add_option("--timeout", args->timeout_s, "seconds one lab may take to render")
         ->check(CLI::Range(0.1, 3600.0))
         ->capture_default_str();
-    cmd->add_option("--labs", args->common.labs_root, "folder holding the labs");
+    cmd->add_option("--labs", args->common.labs_root, kLabsHelp);
     cmd->add_option("--lab", args->common.labs, "lab id (repeatable; default: all labs)");
     return cmd;
 }

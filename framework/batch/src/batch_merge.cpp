@@ -114,6 +114,7 @@ bool collectRows(std::vector<Input>& inputs, Summary* merged,
                  std::vector<std::pair<fs::path, SummaryRow>>* rows, std::string* error) {
     std::map<std::string, std::string> seen;  // student -> results folder
     merged->labs = inputs.front().summary.labs;
+    merged->labs_named = inputs.front().summary.labs_named;
     merged->tool_version = inputs.front().summary.tool_version;
     for (Input& in : inputs) {
         if (in.summary.labs != merged->labs) {

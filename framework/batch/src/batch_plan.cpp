@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "shaderlab/base/student_files.h"
 #include "shaderlab/batch/batch.h"
 #include "shaderlab/batch/plan.h"
 #include "shaderlab/batch/reference_cache.h"
@@ -30,15 +31,23 @@ std::string secondsText(double seconds) {
     return text;
 }
 
-// What a submission's report depends on: the program, its files, its labs' keys, the formats.
-std::string submissionKey(const BatchSettings& settings, const std::vector<LabPlan>& labs,
-                          const SubmissionSource& source) {
+// The program and the submission's files: what its unpacked zip and its report rest on.
+std::string contentKey(const BatchSettings& settings, const SubmissionSource& source) {
     Hasher key;
     key.add(settings.tool_version);
     if (source.is_zip)
         key.addFile(source.path);
     else
         key.addTree(source.path, source.path);
+    return key.hex();
+}
+
+// What a submission's report depends on: its content, the class's labs and their keys, the formats.
+std::string submissionKey(const BatchSettings& settings, const std::vector<LabPlan>& labs,
+                          const Submission& sub) {
+    Hasher key;
+    key.add(sub.content_key);
+    key.addNumber(settings.labs_named ? 1 : 0);
     for (const LabPlan& lab : labs) key.add(lab.key);
     for (const std::string& f : settings.formats) key.add(f);
     return key.hex();
@@ -47,7 +56,7 @@ std::string submissionKey(const BatchSettings& settings, const std::vector<LabPl
 // A submitted zip unpacked under the state folder (once per content), or the reason it cannot be.
 void unpackZip(const BatchSettings& settings, const ResultsFolder& folder, Submission* sub) {
     std::error_code ec;
-    const fs::path into = folder.state / "work" / (sub->folder_name + "-" + sub->key);
+    const fs::path into = folder.state / "work" / (sub->folder_name + "-" + sub->content_key);
     if (!fs::is_directory(into, ec)) {
         const fs::path tmp = into.string() + ".tmp-" + std::to_string(getpid());
         fs::remove_all(tmp, ec);
@@ -65,8 +74,31 @@ void unpackZip(const BatchSettings& settings, const ResultsFolder& folder, Submi
     sub->root = into.string();
 }
 
-// The submission's own root below its wrapping folders; "empty" when it holds no lab.
-void findLabs(const BatchSettings& settings, Submission* sub) {
+// Whether the lab folder `dir` holds one of `files` (found without regard to case, as grading
+// finds them); when not, `why` says so, naming what the folder holds.
+bool handsIn(const fs::path& dir, const std::string& lab, const std::vector<std::string>& files,
+             std::string* why) {
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(dir, ec))) {
+        *why = "not handed in: the submission has no " + lab + "/ folder";
+        return false;
+    }
+    // A lab folder that is a link is not entered here (it may lead anywhere): grading refuses what
+    // of it lies outside the submission, and says so.
+    if (fs::is_symlink(dir, ec)) return true;
+    for (const std::string& f : files)
+        if (fs::exists(fs::symlink_status(dir / f, ec)) || !findIgnoringCase(dir.string(), f).empty())
+            return true;
+    std::string names;
+    for (const std::string& f : files) names += (names.empty() ? "" : ", ") + f;
+    *why = "not handed in: " + lab + "/ holds none of the lab's files (" + names + "); it holds " +
+           describeFolder(dir.string());
+    return false;
+}
+
+// The submission's own root below its wrapping folders, and the labs it hands in; "empty" when
+// it holds no lab folder.
+void findLabs(const BatchSettings& settings, const std::vector<LabPlan>& labs, Submission* sub) {
     std::error_code ec;
     const std::vector<std::string>& all_ids = settings.all_lab_ids;
     const std::string unpacked = sub->root;
@@ -85,6 +117,14 @@ void findLabs(const BatchSettings& settings, Submission* sub) {
         sub->status = "empty";
         sub->message = "no lab folder (such as " + all_ids.front() + "/) in the submission; it holds " +
                        describeFolder(sub->root);
+        return;
+    }
+    for (const LabPlan& lab : labs) {
+        std::string why;
+        if (handsIn(fs::path(sub->root) / lab.id, lab.id, lab.student_files, &why))
+            sub->handed_in.push_back(lab.id);
+        else
+            sub->lab_notes.emplace_back(lab.id, why);
     }
 }
 
@@ -98,6 +138,11 @@ void planGradingJobs(const BatchSettings& settings, const ResultsFolder& folder,
     std::vector<Job>& jobs = plan->jobs;
     for (std::size_t i = 0; i < plan->labs.size(); ++i) {
         const LabPlan& lab = plan->labs[i];
+        if (!settings.labs_named &&
+            std::find(sub->handed_in.begin(), sub->handed_in.end(), lab.id) == sub->handed_in.end()) {
+            sub->jobs.push_back(SIZE_MAX);  // not handed in: nothing to grade (lab_notes says why)
+            continue;
+        }
         const fs::path lab_folder = fs::path(sub->root) / lab.id;
         Hasher h;
         h.add(lab.key);
@@ -189,6 +234,7 @@ bool readLabs(const std::string& labs_root, const std::vector<std::string>& ids,
         lab.id = id;
         lab.title = parsed.spec.title;
         lab.max_score = parsed.spec.grading.points;
+        lab.student_files = parsed.spec.student_files;
         labs->push_back(lab);
     }
     return true;
@@ -265,24 +311,39 @@ void planLabs(const BatchSettings& settings, const ResultsFolder& folder, Plan* 
     }
 }
 
-void planSubmissions(const BatchSettings& settings, const ResultsFolder& folder,
-                     const std::vector<SubmissionSource>& sources, Plan* plan) {
-    std::map<std::string, std::size_t> job_of;  // lab/hash -> job
+void surveySubmissions(const BatchSettings& settings, const ResultsFolder& folder,
+                       const std::vector<SubmissionSource>& sources, Plan* plan) {
     for (const SubmissionSource& source : sources) {
         Submission sub;
         sub.source = source;
         sub.folder_name = reservedName(source.student) ? source.student + "-submission" : source.student;
-        sub.key = submissionKey(settings, plan->labs, source);
-        if (unchangedSince(folder.out / sub.folder_name, sub.key, &sub.row)) {
-            sub.skipped = true;
-            plan->subs.push_back(std::move(sub));
-            continue;
-        }
+        sub.content_key = contentKey(settings, source);
         sub.root = source.path;
         if (source.is_zip) unpackZip(settings, folder, &sub);
-        if (sub.status == "graded") findLabs(settings, &sub);
-        if (sub.status == "graded") planGradingJobs(settings, folder, plan->subs.size(), &sub, plan, &job_of);
+        if (sub.status == "graded") findLabs(settings, plan->labs, &sub);
         plan->subs.push_back(std::move(sub));
+    }
+}
+
+void chooseClassLabs(const BatchSettings& settings, Plan* plan) {
+    if (settings.labs_named) return;
+    std::set<std::string> handed_in;
+    for (const Submission& sub : plan->subs) handed_in.insert(sub.handed_in.begin(), sub.handed_in.end());
+    plan->labs.erase(std::remove_if(plan->labs.begin(), plan->labs.end(),
+                                    [&](const LabPlan& lab) { return handed_in.count(lab.id) == 0; }),
+                     plan->labs.end());
+}
+
+void planSubmissions(const BatchSettings& settings, const ResultsFolder& folder, Plan* plan) {
+    std::map<std::string, std::size_t> job_of;  // lab/hash -> job
+    for (std::size_t i = 0; i < plan->subs.size(); ++i) {
+        Submission& sub = plan->subs[i];
+        sub.key = submissionKey(settings, plan->labs, sub);
+        if (unchangedSince(folder.out / sub.folder_name, sub.key, &sub.row)) {
+            sub.skipped = true;
+            continue;
+        }
+        if (sub.status == "graded") planGradingJobs(settings, folder, i, &sub, plan, &job_of);
     }
 }
 
@@ -292,7 +353,7 @@ void removeStaleWork(const ResultsFolder& folder, const std::vector<Submission>&
     std::error_code ec;
     std::set<std::string> current;
     for (const Submission& sub : subs)
-        if (sub.source.is_zip) current.insert(sub.folder_name + "-" + sub.key);
+        if (sub.source.is_zip) current.insert(sub.folder_name + "-" + sub.content_key);
     std::vector<fs::path> stale;
     for (const fs::directory_entry& e : fs::directory_iterator(folder.state / "work", ec))
         if (!current.count(e.path().filename().string())) stale.push_back(e.path());

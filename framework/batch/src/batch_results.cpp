@@ -7,6 +7,7 @@
 
 #include "batch_detail.h"
 #include "grader/reports/report.h"
+#include "shaderlab/base/student_files.h"
 #include "shaderlab/batch/batch.h"
 #include "shaderlab/batch/plan.h"
 #include "shaderlab/batch/results.h"
@@ -78,6 +79,9 @@ grader::Report assembleReport(const Submission& sub, const std::vector<LabPlan>&
         if (j == SIZE_MAX) {
             lab.status = "missing";
             lab.message = sub.message;
+            for (const auto& [id, why] : sub.lab_notes)
+                if (id == lab.id) lab.message = why;
+            lab.folder = (fs::path(sub.shown_root) / lab.id).lexically_normal().string();
         } else if (!jobs[j].ok) {
             lab.status = "crashed";
             lab.message = "the grading process stopped (" + jobs[j].error +
@@ -109,12 +113,29 @@ grader::Report assembleReport(const Submission& sub, const std::vector<LabPlan>&
     return report;
 }
 
+// What summary.csv says of a graded submission: for each lab that did not render, its message,
+// and the files found only by their case (student_files.h), "<lab>: <message>" joined.
+std::string labsMessage(const grader::Report& report) {
+    std::string out;
+    auto add = [&](const std::string& lab, const std::string& text) {
+        if (text.empty()) return;
+        out +=
+            (out.empty() ? "" : "; ") + lab + ": " + (text.size() > 300 ? text.substr(0, 300) + "..." : text);
+    };
+    for (const grader::ReportLab& lab : report.labs) {
+        if (lab.status != "passed" && lab.status != "failed") add(lab.id, lab.message);
+        for (const grader::ReportDiagnostic& d : lab.diagnostics)
+            if (isCaseNote(d.message)) add(lab.id, d.message);
+    }
+    return out;
+}
+
 SummaryRow rowOf(const Submission& sub, const grader::Report& report) {
     SummaryRow row;
     row.student = sub.source.student;
     row.source = sub.source.path;
     row.status = sub.status;
-    row.message = sub.message;
+    row.message = sub.status == "graded" ? labsMessage(report) : sub.message;
     row.total = report.score;
     row.max_total = report.max_score;
     row.report = sub.folder_name + "/report.json";
@@ -157,7 +178,8 @@ bool writeSubmission(Submission* sub, const grader::Report& report, const std::v
     // batch.json last: a report folder without it is redone on the next run, and so is one where a
     // worker failed (our fault, perhaps passing: the next run tries again).
     bool complete = true;
-    for (std::size_t j : sub->jobs) complete = complete && j != SIZE_MAX && jobs[j].ok;
+    for (std::size_t j : sub->jobs)
+        complete = complete && (j == SIZE_MAX || jobs[j].ok);  // MAX: not handed in
     ok = ok && (!complete ||
                 writeFileAtomically(
                     (tmp / "batch.json").string(),

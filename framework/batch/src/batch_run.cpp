@@ -21,7 +21,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// One line per finished submission, or a bar redrawn in place on a terminal.
+// One line per finished submission, or a bar redrawn in place on a terminal that names the
+// submissions being graded now (not the last one finished: a lab that runs to its limit would
+// leave the bar naming someone else for the whole wait).
 class Progress {
   public:
     explicit Progress(std::size_t total) : total_(total), tty_(isatty(STDOUT_FILENO)), t0_(Clock::now()) {}
@@ -32,19 +34,19 @@ class Progress {
                         s.skipped ? "unchanged," : s.row.status.c_str(), s.row.total, s.row.max_total);
             std::fflush(stdout);
         } else {
-            draw(printable(s.row.student, 30));
+            draw(running_);
         }
     }
-    void tick() {
-        if (tty_ && std::chrono::duration<double>(Clock::now() - last_draw_).count() > 0.5) draw(last_name_);
+    void tick(const std::string& running) {
+        running_ = running;
+        if (tty_ && std::chrono::duration<double>(Clock::now() - last_draw_).count() > 0.5) draw(running_);
     }
     void end() {
         if (tty_) std::printf("\n");
     }
 
   private:
-    void draw(const std::string& name) {
-        last_name_ = name;
+    void draw(const std::string& running) {
         last_draw_ = Clock::now();
         const double elapsed = std::chrono::duration<double>(Clock::now() - t0_).count();
         const int width = 30;
@@ -58,39 +60,68 @@ class Progress {
         } else if (done_ == total_) {
             std::snprintf(eta, sizeof eta, "0:00");
         }
-        std::printf("\r\033[K[%s] %zu/%zu  ETA %s  %s", bar.c_str(), done_, total_, eta, name.c_str());
+        std::printf("\r\033[K[%s] %zu/%zu  ETA %s  %s", bar.c_str(), done_, total_, eta, running.c_str());
         std::fflush(stdout);
     }
     std::size_t total_, done_ = 0;
     bool tty_;
     Clock::time_point t0_, last_draw_{};
-    std::string last_name_;
+    std::string running_;
 };
+
+// The labs the batch grades, and how many submissions hand each in, before any work: what the
+// totals are out of is said at once.
+void printClassLabs(const BatchSettings& settings, const Plan& plan) {
+    std::string list;
+    for (const LabPlan& lab : plan.labs) {
+        std::size_t n = 0;
+        for (const Submission& sub : plan.subs)
+            n += std::count(sub.handed_in.begin(), sub.handed_in.end(), lab.id) > 0 ? 1 : 0;
+        list +=
+            (list.empty() ? "" : ", ") + lab.id + (settings.labs_named ? "" : " (" + std::to_string(n) + ")");
+    }
+    if (settings.labs_named)
+        std::printf("labs: %s (named with --lab)\n", list.c_str());
+    else if (!plan.labs.empty())
+        std::printf(
+            "labs: %s: those handed in (how many hand each in); totals are out of these. Name the "
+            "assignment's labs with --lab to grade exactly those\n",
+            list.c_str());
+    else
+        std::printf("labs: none: no submission hands in a lab's files\n");
+    std::fflush(stdout);
+}
 
 // The summary of every submission, in the plan's order.
 Summary summaryOf(const BatchSettings& settings, const Plan& plan) {
     Summary summary;
     summary.tool_version = settings.tool_version;
     summary.shard = settings.shard;
+    summary.labs_named = settings.labs_named;
     for (const LabPlan& lab : plan.labs) summary.labs.push_back(lab.id);
     for (const Submission& sub : plan.subs) summary.rows.push_back(sub.row);
     return summary;
 }
 
-// The figures of the run: submissions graded and reused, worker runs, wall and CPU time.
+// The figures of the run: submissions graded and reused, labs graded by the workers and taken
+// from the cache, wall and CPU time.
 void printFigures(const BatchSettings& settings, const Plan& plan, Clock::time_point started) {
     std::size_t graded = 0, reused = 0;
     for (const Submission& sub : plan.subs) {
         graded += sub.skipped ? 0 : 1;
         reused += sub.skipped ? 1 : 0;
     }
-    std::size_t cached = 0;
+    std::size_t labs_graded = 0, cached = 0, references = 0;
     std::set<pid_t> workers;  // a worker may have done several jobs
     for (const Job& job : plan.jobs) {
         if (job.pid > 0) workers.insert(job.pid);
-        cached += job.pid <= 0 && job.ok && job.kind == Job::Grade ? 1 : 0;
+        if (job.kind == Job::Reference) {
+            references += job.pid > 0 ? 1 : 0;
+            continue;
+        }
+        labs_graded += job.pid > 0 ? 1 : 0;
+        cached += job.pid <= 0 && job.ok ? 1 : 0;
     }
-    const std::size_t ran = workers.size();
     const double wall = std::chrono::duration<double>(Clock::now() - started).count();
     rusage self{}, children{};
     getrusage(RUSAGE_SELF, &self);
@@ -101,21 +132,52 @@ void printFigures(const BatchSettings& settings, const Plan& plan, Clock::time_p
     if (settings.shard.count > 0)
         std::printf("shard %d/%d: %zu of the %zu submissions\n", settings.shard.index, settings.shard.count,
                     plan.subs.size(), settings.shard.submissions);
+    // A lab folder is graded once however many submissions hold the same files, and one graded by
+    // an earlier run (or by another shard sharing the cache) is taken as it is. "N worker runs" is
+    // read by scripts (bench/run_bench.py, tests/slurm): it keeps its form.
     std::printf(
-        "%zu submissions (%zu graded, %zu unchanged since their report), %zu worker runs, %zu graded labs "
-        "taken from the cache, %d jobs at a time; %.1f s wall, %.1f s CPU, %.0f submissions per minute\n",
-        plan.subs.size(), graded, reused, ran, cached, settings.jobs_max, wall, cpu,
-        wall > 0 ? 60.0 * plan.subs.size() / wall : 0.0);
+        "%zu submissions (%zu graded, %zu unchanged since their report), %zu worker runs (%zu lab "
+        "folders graded, %zu reference solutions rendered), %zu lab folders found graded by an earlier "
+        "run; %d jobs at a time; %.1f s wall, %.1f s CPU, %.0f submissions per minute\n",
+        plan.subs.size(), graded, reused, workers.size(), labs_graded, references, cached, settings.jobs_max,
+        wall, cpu, wall > 0 ? 60.0 * plan.subs.size() / wall : 0.0);
 }
 
 }  // namespace
+
+std::string describeRunning(const Plan& plan, Clock::time_point now) {
+    std::vector<std::string> names;
+    double longest = 0.0;
+    std::string longest_name;
+    std::set<pid_t> seen;  // a worker grading several labs of a submission is named once
+    for (const Job& job : plan.jobs) {
+        if (job.done || job.pid <= 0 || !seen.insert(job.pid).second) continue;
+        const double s = std::chrono::duration<double>(now - job.started).count();
+        const std::string name =
+            job.kind == Job::Reference ? "the reference of " + job.lab
+            : job.waiting.empty()
+                ? job.lab
+                : printable(plan.subs[job.waiting.front()].source.student, 30) + " (" + job.lab + ")";
+        names.push_back(name);
+        if (s > longest) longest = s, longest_name = name;
+    }
+    if (names.empty()) return {};
+    std::string out = "grading ";
+    for (std::size_t i = 0; i < names.size() && i < 2; ++i) out += (i ? ", " : "") + names[i];
+    if (names.size() > 2) out += " +" + std::to_string(names.size() - 2);
+    if (longest >= 10.0) out += "; " + longest_name + " for " + std::to_string(int(longest)) + " s";
+    return out;
+}
 
 int gradeBatch(const BatchSettings& settings, const ResultsFolder& folder, std::vector<LabPlan> labs,
                const std::vector<SubmissionSource>& sources, Clock::time_point started) {
     Plan plan;
     plan.labs = std::move(labs);
+    surveySubmissions(settings, folder, sources, &plan);
+    chooseClassLabs(settings, &plan);
+    printClassLabs(settings, plan);
     planLabs(settings, folder, &plan);
-    planSubmissions(settings, folder, sources, &plan);
+    planSubmissions(settings, folder, &plan);
     removeStaleWork(folder, plan.subs);
 
     Progress progress(plan.subs.size());
@@ -138,7 +200,7 @@ int gradeBatch(const BatchSettings& settings, const ResultsFolder& folder, std::
         std::cerr << "shaderlab: the reference solution of " << job.lab << " did not render (" << why
                   << "); its labs are graded against the stored goldens\n";
     };
-    hooks.tick = [&] { progress.tick(); };
+    hooks.tick = [&] { progress.tick(describeRunning(plan, Clock::now())); };
     runJobs(&plan, folder, settings, hooks);
     progress.end();
 

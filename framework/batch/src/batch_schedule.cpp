@@ -69,7 +69,7 @@ class Pool {
   private:
     bool ready(const Submission& sub) const {
         for (std::size_t j : sub.jobs)
-            if (!jobs_[j].done) return false;
+            if (j != SIZE_MAX && !jobs_[j].done) return false;  // SIZE_MAX: a lab not handed in
         return true;
     }
 

@@ -80,7 +80,8 @@ std::string summaryToJson(const Summary& summary) {
     json j = {{"summary_version", kSummaryVersion},
               {"tool", "shaderlab"},
               {"tool_version", summary.tool_version},
-              {"labs", summary.labs}};
+              {"labs", summary.labs},
+              {"labs_named", summary.labs_named}};
     // Only a shard says so: a whole batch and a merge of its shards write the same bytes.
     if (summary.shard.count > 0)
         j["shard"] = {{"index", summary.shard.index},
@@ -104,6 +105,7 @@ bool summaryFromJson(const std::string& text, Summary* out, std::string* error) 
     }
     Summary s;
     s.tool_version = j.value("tool_version", "");
+    s.labs_named = j.value("labs_named", json()).is_boolean() && j["labs_named"].get<bool>();
     const json labs = j.value("labs", json::array());
     const json rows = j.value("submissions", json::array());
     if (!labs.is_array() || !rows.is_array()) {

@@ -2,6 +2,7 @@
 // See class_report.h. Pure: reads a ClassInput, touches no file.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <tuple>
@@ -13,7 +14,7 @@ namespace shaderlab::classview {
 namespace {
 
 const std::vector<std::string> kLabStatuses = {"passed",  "failed",  "compile_error", "link_error",
-                                               "timeout", "crashed", "missing"};
+                                               "timeout", "crashed", "missing",       "not_attempted"};
 const std::vector<std::string> kSubmissionStatuses = {"graded", "empty", "bad_archive", "unsafe_archive",
                                                       "too_large"};
 
@@ -60,10 +61,15 @@ double labScore(const StudentResults& s, const std::string& id) {
 
 bool rendered(const std::string& status) { return status == "passed" || status == "failed"; }
 
-// The scenes a goal is seen in, by the student's report (older reports name only failing checks).
+// Handed in: graded from the student's own files (not absent, not the starter untouched).
+bool handedIn(const std::string& status) { return status != "missing" && status != "not_attempted"; }
+
+// The scenes a goal is seen in, by the student's report (older reports name only failing checks;
+// a goal judged alone names its whole shaders' failures apart).
 std::set<std::string> goalScenes(const grader::ReportGoal& g) {
     std::set<std::string> scenes(g.scenes.begin(), g.scenes.end());
-    for (const std::string& f : g.failing) scenes.insert(f.substr(0, f.find('/')));
+    for (const auto* list : {&g.failing, &g.whole_failing})
+        for (const std::string& f : *list) scenes.insert(f.substr(0, f.find('/')));
     return scenes;
 }
 
@@ -134,7 +140,9 @@ std::map<std::string, const grader::ReportScene*> countMistakes(const StudentRes
     return seen;
 }
 
-// One student's goals of the lab: met, or what is behind them when not.
+// One student's goals of the lab: met, or what is behind them when not. A goal not met because of
+// another (not_met_because set: lab.json depends_on) is that goal's failure, not its own: its known
+// mistakes are counted under the goal the student's own work failed.
 void countGoals(const grader::ReportLab* l, const std::string& status, LabCounting* c) {
     std::map<std::string, const grader::ReportGoal*> own;
     if (l)
@@ -151,6 +159,11 @@ void countGoals(const grader::ReportLab* l, const std::string& status, LabCounti
             ++(rendered(status) ? goal.unexplained : goal.not_rendered);
             continue;
         }
+        if (!it->second->not_met_because.empty()) {
+            ++goal.failed_because;
+            continue;
+        }
+        ++goal.own_failed;
         const std::set<std::string> scenes = goalScenes(*it->second);
         std::set<std::string> behind;
         for (const grader::ReportScene& sc : l->scenes)
@@ -210,7 +223,8 @@ LabClass countLab(const ClassInput& in, const std::string& id) {
         ++statuses[status];
         if (const batch::SummaryLab* r = rowLab(s, id))
             c.lab.max_score = std::max(c.lab.max_score, r->max_score);
-        if (status == "missing") continue;
+        c.lab.not_attempted += status == "not_attempted" ? 1 : 0;
+        if (!handedIn(status)) continue;
         ++c.lab.handed_in;
         c.scores.push_back(labScore(s, id));
         if (!s.has_report) continue;
@@ -261,47 +275,71 @@ std::string unmetPhrase(const grader::ReportLab& l, const LabClass& lab) {
            (mistakes.empty() ? "" : " (" + joined(mistakes) + ")");
 }
 
-// One student across the batch's labs; false when there is nothing to help with (or no report).
-bool studentNeed(const StudentResults& s, const std::vector<LabClass>& labs, StudentNeed* out) {
+// "not handed in", or what the lab's message says is missing (a file of a lab handed in).
+bool notHandedIn(const StudentResults& s, const std::string& id) {
+    const grader::ReportLab* l = reportLab(s, id);
+    return !l || l->message.empty() || l->message.rfind("not handed in", 0) == 0 ||
+           l->message.find("has no folder for this lab") != std::string::npos;
+}
+
+// "01-phong: 3 of 10 points; per_fragment, phong_lobe not met (blinn-phong)".
+std::string weakPhrase(const grader::ReportLab& l, const LabClass& lab, double score) {
+    char points[64];
+    std::snprintf(points, sizeof points, "%g of %g points", score, lab.max_score);
+    return lab.id + ": " + points + "; " + unmetPhrase(l, lab).substr(lab.id.size() + 2);
+}
+
+// One student across the class's labs; false when there is nothing to help with (or no report).
+bool studentNeed(const StudentResults& s, const std::vector<LabClass>& labs, double max_total,
+                 StudentNeed* out) {
     if (s.row.status == "graded" && !s.has_report) return false;
     StudentNeed n;
     n.student = s.row.student;
     n.status = s.row.status;
     n.message = s.row.message;
-    n.total = s.row.total;
-    n.max_total = s.row.max_total;
+    n.max_total = max_total;
     if (s.has_report && s.row.report.size() > 11 &&
         s.row.report.compare(s.row.report.size() - 11, 11, "report.json") == 0)
         n.report_html = s.row.report.substr(0, s.row.report.size() - 11) + "report.html";
-    std::vector<std::string> timeouts, not_compiled, crashed, missing, unmet;
+    std::vector<std::string> timeouts, not_compiled, crashed, missing, files_missing, not_attempted, weak;
     for (const LabClass& lab : labs) {
         n.goals_total += int(lab.goals.size());
         const std::string status = labStatus(s, lab.id);
+        n.total += labScore(s, lab.id);
         if (status == "timeout") timeouts.push_back(lab.id);
         if (status == "compile_error" || status == "link_error") not_compiled.push_back(lab.id);
         if (status == "crashed") crashed.push_back(lab.id);
-        if (status == "missing") missing.push_back(lab.id);
+        // A refused archive's labs are all missing: the refusal is the reason, said below.
+        if (status == "missing" && n.status == "graded")
+            (notHandedIn(s, lab.id) ? missing : files_missing).push_back(lab.id);
+        if (status == "not_attempted") not_attempted.push_back(lab.id);
         if (const grader::ReportLab* l = reportLab(s, lab.id)) {
-            const int met = goalsMet(*l, lab);
-            n.goals_met += met;
-            if (rendered(status) && met < int(lab.goals.size())) unmet.push_back(unmetPhrase(*l, lab));
+            n.goals_met += goalsMet(*l, lab);
+            const double score = labScore(s, lab.id);  // the summary's, as the totals
+            if (rendered(status) && score < kHelpBelowShare * lab.max_score)
+                weak.push_back(weakPhrase(*l, lab, score));
         }
     }
     n.timeouts = int(timeouts.size());
     n.not_compiled = int(not_compiled.size());
     n.crashed = int(crashed.size());
     n.not_handed_in = int(missing.size());
+    n.not_attempted = int(not_attempted.size());
+    n.weak_labs = int(weak.size());
     if (n.status != "graded") {
         n.reasons.push_back(n.status == "empty" ? "no lab folder in the submission"
                                                 : "archive refused (" + n.status + ")");
     } else if (!missing.empty()) {
         n.reasons.push_back(labsPhrase("not handed in", missing));
     }
+    if (!not_attempted.empty())
+        n.reasons.push_back(labsPhrase("not attempted (the starter code, untouched)", not_attempted));
+    if (!files_missing.empty()) n.reasons.push_back(labsPhrase("a file missing", files_missing));
     if (!timeouts.empty()) n.reasons.push_back(labsPhrase("timed out", timeouts, true));
     if (!not_compiled.empty()) n.reasons.push_back(labsPhrase("did not compile", not_compiled));
     if (!crashed.empty()) n.reasons.push_back(labsPhrase("crashed", crashed));
-    n.reasons.insert(n.reasons.end(), unmet.begin(), unmet.end());
-    if (n.goals_met == n.goals_total && n.reasons.empty()) return false;
+    n.reasons.insert(n.reasons.end(), weak.begin(), weak.end());
+    if (n.reasons.empty()) return false;
     *out = std::move(n);
     return true;
 }
@@ -314,8 +352,9 @@ std::vector<ReteachItem> reteachFirst(const std::vector<LabClass>& labs, std::si
     std::vector<ReteachItem> items;
     for (const LabClass& lab : labs) {
         for (const GoalShare& g : lab.goals) {
-            // Unmet only where the lab did not render: no concept to re-teach (needs_help says who).
-            if (g.of == 0 || g.met + g.not_rendered == g.of) continue;
+            // Only goals students failed on their own work: one lost because of another goal is
+            // that goal's to re-teach, and one lost where the lab did not render is needs_help's.
+            if (g.of == 0 || g.own_failed == 0) continue;
             ReteachItem r;
             r.lab = lab.id;
             r.lab_title = lab.title;
@@ -323,6 +362,7 @@ std::vector<ReteachItem> reteachFirst(const std::vector<LabClass>& labs, std::si
             r.goal_title = g.title;
             r.met = g.met;
             r.of = g.of;
+            r.own_failed = g.own_failed;
             if (!g.mistakes.empty()) {
                 r.mistake = g.mistakes.front().mistake;
                 r.mistake_students = g.mistakes.front().students;
@@ -333,10 +373,10 @@ std::vector<ReteachItem> reteachFirst(const std::vector<LabClass>& labs, std::si
         }
     }
     std::stable_sort(items.begin(), items.end(), [](const ReteachItem& a, const ReteachItem& b) {
-        // share a.met/a.of < b.met/b.of without rounding; then more students short of it first.
-        const long lhs = long(a.met) * b.of, rhs = long(b.met) * a.of;
-        if (lhs != rhs) return lhs < rhs;
-        return a.of - a.met > b.of - b.met;
+        // share a.own_failed/a.of > b.own_failed/b.of without rounding; then more such students first.
+        const long lhs = long(a.own_failed) * b.of, rhs = long(b.own_failed) * a.of;
+        if (lhs != rhs) return lhs > rhs;
+        return a.own_failed > b.own_failed;
     });
     std::vector<ReteachItem> first;
     for (ReteachItem& item : items) {
@@ -349,6 +389,24 @@ std::vector<ReteachItem> reteachFirst(const std::vector<LabClass>& labs, std::si
             first.push_back(std::move(item));
     }
     return first;
+}
+
+// The class's labs: the summary's columns and any other lab a report holds; unless the labs were
+// named, those no one handed in are left out (an older batch listed every lab of the course).
+std::vector<std::string> classLabs(const ClassInput& in) {
+    std::vector<std::string> ids = in.labs;
+    for (const StudentResults& s : in.students)
+        for (const grader::ReportLab& l : s.report.labs)
+            if (s.has_report && std::find(ids.begin(), ids.end(), l.id) == ids.end()) ids.push_back(l.id);
+    if (in.labs_named) return ids;
+    std::vector<std::string> kept;
+    for (const std::string& id : ids)
+        for (const StudentResults& s : in.students)
+            if (s.row.status == "graded" && (labStatus(s, id) != "missing" || !notHandedIn(s, id))) {
+                kept.push_back(id);
+                break;
+            }
+    return kept;
 }
 
 }  // namespace
@@ -381,21 +439,18 @@ ClassReport aggregateClass(const ClassInput& in, std::size_t reteach_max) {
     r.results_dir = in.results_dir;
     r.errors = in.errors;
     r.submissions = int(in.students.size());
-    std::vector<std::string> lab_ids = in.labs;
-    for (const StudentResults& s : in.students)
-        for (const grader::ReportLab& l : s.report.labs)
-            if (s.has_report && std::find(lab_ids.begin(), lab_ids.end(), l.id) == lab_ids.end())
-                lab_ids.push_back(l.id);
-    for (const std::string& id : lab_ids) r.labs.push_back(countLab(in, id));
+    for (const std::string& id : classLabs(in)) r.labs.push_back(countLab(in, id));
+    for (const LabClass& lab : r.labs) r.max_total += lab.max_score;
 
     std::map<std::string, int> statuses;
     std::vector<double> totals;
     for (const StudentResults& s : in.students) {
         ++statuses[s.row.status];
-        totals.push_back(s.row.total);
-        r.max_total = std::max(r.max_total, s.row.max_total);
+        double total = 0.0;
+        for (const LabClass& lab : r.labs) total += labScore(s, lab.id);
+        totals.push_back(total);
         StudentNeed n;
-        if (studentNeed(s, r.labs, &n)) r.needs_help.push_back(std::move(n));
+        if (studentNeed(s, r.labs, r.max_total, &n)) r.needs_help.push_back(std::move(n));
     }
     r.submission_statuses = orderedCounts(statuses, kSubmissionStatuses);
     r.totals = pointsHistogram(totals, r.max_total);

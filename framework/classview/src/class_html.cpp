@@ -107,20 +107,22 @@ const MistakeTally* findMistake(const ClassReport& r, const std::string& lab, co
 
 void reteachSection(const ClassReport& r, std::ostringstream& h) {
     h << "<section class=\"card reteach\" id=\"reteach\">\n<h2>Re-teach first</h2>\n"
-      << "<p class=\"meta\">The learning goals met by the fewest of the students who handed the lab in, "
-         "and the known mistake most often behind each. Goals missed only where a lab did not render "
-         "(a compile error, a timeout) are left out: those students are in &ldquo;Students who need help "
-         "most&rdquo;.</p>\n";
+      << "<p class=\"meta\">The learning goals that the most of the students who handed the lab in "
+         "failed on their own work for it, and the known mistake most often behind each. A goal lost only "
+         "because another goal it rests on was not met counts under that goal; goals missed only where a "
+         "lab did not render (a compile error, a timeout) are left out: those students are in "
+         "&ldquo;Students who need help&rdquo;.</p>\n";
     if (r.reteach.empty()) {
-        h << "<p class=\"none\">Every student whose lab rendered met every one of its "
-             "goals.</p>\n</section>\n";
+        h << "<p class=\"none\">No student whose lab rendered failed a goal on their own work.</p>\n"
+             "</section>\n";
         return;
     }
     h << "<ol>\n";
     for (const ReteachItem& t : r.reteach) {
         const double share = t.of > 0 ? double(t.met) / t.of : 0.0;
         h << "<li class=\"item\" data-lab=\"" << escapeHtml(t.lab) << "\" data-goal=\"" << escapeHtml(t.goal)
-          << "\" data-met=\"" << t.met << "\" data-of=\"" << t.of << "\">";
+          << "\" data-met=\"" << t.met << "\" data-of=\"" << t.of << "\" data-own-failed=\"" << t.own_failed
+          << "\">";
         const MistakeTally* m = t.mistake.empty() ? nullptr : findMistake(r, t.lab, t.mistake);
         if (m && !m->mistake_picture.empty())
             h << "<div class=\"pic\">" << picture(m->expected_picture, "expected", "expected")
@@ -132,7 +134,8 @@ void reteachSection(const ClassReport& r, std::ostringstream& h) {
           << escapeHtml(t.lab) << "</a> · " << escapeHtml(t.lab_title) << " · goal <code>"
           << escapeHtml(t.goal) << "</code></div>"
           << "<div><span class=\"share\" style=\"color:" << shareColor(share) << "\">met by " << t.met
-          << " of " << t.of << " (" << percent(share) << ")</span></div><div class=\"behind\">";
+          << " of " << t.of << " (" << percent(share) << ")</span>; failed on their own work by "
+          << plural(t.own_failed, "student", "students") << "</div><div class=\"behind\">";
         if (t.mistake.empty())
             h << "No known mistake was recognised behind it: look at these students' reports.";
         else
@@ -168,16 +171,16 @@ void overviewSection(const ClassReport& r, std::ostringstream& h) {
 
 void goalDetails(const LabClass& l, std::ostringstream& h) {
     h << "<details><summary>What is behind the unmet goals</summary>\n<table><thead><tr><th>goal</th>"
-         "<th>not met</th><th>known mistakes (students)</th><th>did not render</th><th>no known mistake</th>"
-         "</tr></thead><tbody>\n";
+         "<th>not met</th><th>own work failed</th><th>known mistakes there (students)</th><th>no known "
+         "mistake</th><th>only because of another goal</th><th>did not render</th></tr></thead><tbody>\n";
     for (const GoalShare& g : l.goals) {
         h << "<tr><td><code>" << escapeHtml(g.id) << "</code></td><td class=\"num\">" << g.of - g.met
-          << "</td><td>";
+          << "</td><td class=\"num\">" << g.own_failed << "</td><td>";
         for (std::size_t i = 0; i < g.mistakes.size(); ++i)
             h << (i ? ", " : "") << "<span class=\"mname\">" << escapeHtml(g.mistakes[i].mistake)
               << "</span> " << g.mistakes[i].students;
-        h << "</td><td class=\"num\">" << g.not_rendered << "</td><td class=\"num\">" << g.unexplained
-          << "</td></tr>\n";
+        h << "</td><td class=\"num\">" << g.unexplained << "</td><td class=\"num\">" << g.failed_because
+          << "</td><td class=\"num\">" << g.not_rendered << "</td></tr>\n";
     }
     h << "</tbody></table></details>\n";
 }
@@ -216,6 +219,7 @@ void labSection(const LabClass& l, std::ostringstream& h) {
       << escapeHtml(l.id) << "\">\n<h2><span class=\"labid\">" << escapeHtml(l.id) << "</span> "
       << escapeHtml(l.title) << "</h2>\n"
       << "<p class=\"meta\">handed in by " << l.handed_in << " of " << l.students;
+    if (l.not_attempted > 0) h << " (" << l.not_attempted << " more handed in the starter code untouched)";
     if (l.handed_in > 0)
         h << " · mean " << points(l.mean) << ", median " << points(l.median) << " of " << points(l.max_score)
           << " points";
@@ -233,19 +237,25 @@ void labSection(const LabClass& l, std::ostringstream& h) {
       << "<p class=\"meta\">passed and failed: rendered and judged; compile_error, link_error: the shaders "
          "did "
          "not build; timeout, crashed: the render was stopped or died; missing: not handed in, or a file "
-         "absent.</p></div>\n</div>\n";
+         "absent; not_attempted: the starter code, untouched (not graded, no known mistake).</p></div>\n"
+         "</div>\n";
     mistakesCard(l, h);
     h << "</section>\n";
 }
 
 void helpSection(const ClassReport& r, const std::string& results_href, std::ostringstream& h) {
     constexpr std::size_t kShown = 25;
-    h << "<section class=\"card\" id=\"help\">\n<h2>Students who need help most</h2>\n"
-      << "<p class=\"meta\">Fewest learning goals met first (a lab not handed in or not rendered meets "
-         "none), "
-         "then the most timeouts.</p>\n";
+    h << "<section class=\"card\" id=\"help\">\n<h2>Students who need help</h2>\n"
+      << "<p class=\"meta\">Those with a lab of the class not handed in, not attempted, not built or not "
+         "rendered, or below "
+      << percent(kHelpBelowShare)
+      << " of its points, or whose archive was refused. "
+         "Fewest learning goals met first (a lab not handed in or not rendered meets none), then the most "
+         "timeouts.</p>\n";
     if (r.needs_help.empty()) {
-        h << "<p class=\"none\">Every student met every goal.</p>\n</section>\n";
+        h << "<p class=\"none\">No student: every lab of the class was handed in, rendered and earned at "
+             "least "
+          << percent(kHelpBelowShare) << " of its points.</p>\n</section>\n";
         return;
     }
     h << "<table><thead><tr><th>student</th><th>goals met</th><th>points</th><th>what went wrong</th></tr>"

@@ -113,6 +113,7 @@ bool readClassResults(const std::string& results_dir, ClassInput* out, std::stri
     in.results_dir = results.string();
     in.tool_version = summary.tool_version;
     in.labs = summary.labs;
+    in.labs_named = summary.labs_named;
     for (batch::SummaryRow& row : summary.rows) {
         StudentResults s;
         if (!readReport(results, row, &s, &why)) in.errors.push_back(why);

@@ -264,39 +264,58 @@ TEST(ClassReport, HistogramBins) {
 
 TEST(ClassReport, NeedsHelpOrder) {
     const ClassReport r = readClass(makeClass("help"));
-    // Of 5 goals: dave 0 (two timeouts), frank 0 (archive refused), carol 1, erin 2, bob 3;
-    // alice met all, gina's report cannot be read.
+    // Of 5 goals: dave 0 (two timeouts), frank 0 (archive refused), carol 1 (and a compile error),
+    // erin 2 (01-lab not handed in). Bob has half the points of each lab (2 of 4, 1 of 2): short
+    // of a goal in each, but not in need of help; alice met all, gina's report cannot be read.
     std::vector<std::string> order;
     for (const StudentNeed& n : r.needs_help) order.push_back(n.student);
-    EXPECT_EQ(order, (std::vector<std::string>{"dave", "frank", "carol", "erin", "bob"}));
+    EXPECT_EQ(order, (std::vector<std::string>{"dave", "frank", "carol", "erin"}));
     const StudentNeed& dave = r.needs_help[0];
     EXPECT_EQ(dave.timeouts, 2);
     EXPECT_EQ(dave.goals_total, 5);
     EXPECT_EQ(dave.report_html, "dave/report.html");
     ASSERT_FALSE(dave.reasons.empty());
     EXPECT_NE(dave.reasons[0].find("timed out"), std::string::npos);
-    EXPECT_NE(r.needs_help[1].reasons[0].find("bad_archive"), std::string::npos);
+    EXPECT_EQ(r.needs_help[1].reasons, std::vector<std::string>{"archive refused (bad_archive)"});
     EXPECT_EQ(r.needs_help[2].goals_met, 1);
     EXPECT_EQ(r.needs_help[2].not_compiled, 1);
     EXPECT_EQ(r.needs_help[3].not_handed_in, 1);
-    const StudentNeed& bob = r.needs_help[4];
-    EXPECT_EQ(bob.reasons, (std::vector<std::string>{"01-lab: A not met (gouraud)", "02-lab: X not met"}));
+    EXPECT_EQ(r.needs_help[3].reasons, std::vector<std::string>{"not handed in: 01-lab"});
+    // Carol: 1 of 4 points in 01-lab, below half of it.
+    const StudentNeed& carol = r.needs_help[2];
+    EXPECT_EQ(carol.weak_labs, 1);
+    EXPECT_EQ(carol.reasons,
+              (std::vector<std::string>{"did not compile: 02-lab",
+                                        "01-lab: 1 of 4 points; A, B not met (gouraud, model-matrix)"}));
 }
 
-TEST(ClassReport, ReteachFirstIsTheLeastMetGoals) {
+TEST(ClassReport, ReteachFirstIsTheGoalsMostFailedOnTheStudentsOwnWork) {
     const ClassReport r = readClass(makeClass("reteach"));
-    // A 1/4, X 2/5, B 2/4; Y (3/5) and C (3/4) are unmet only by labs that did not render.
+    // Failed on the student's own work: A by bob and carol (2 of 4), B by carol (1 of 4), X by bob
+    // (1 of 5); Y (3/5) and C (3/4) are unmet only by labs that did not render.
     std::vector<std::string> goals;
     for (const ReteachItem& t : r.reteach) goals.push_back(t.goal);
-    EXPECT_EQ(goals, (std::vector<std::string>{"A", "X", "B"}));
+    EXPECT_EQ(goals, (std::vector<std::string>{"A", "B", "X"}));
+    EXPECT_EQ(r.reteach[0].own_failed, 2);
     EXPECT_EQ(r.reteach[0].mistake, "gouraud");
     EXPECT_EQ(r.reteach[0].mistake_students, 2);
     EXPECT_EQ(r.reteach[0].about, "about gouraud");
-    EXPECT_TRUE(r.reteach[1].mistake.empty());
+    EXPECT_EQ(r.reteach[1].mistake, "model-matrix");
+    EXPECT_TRUE(r.reteach[2].mistake.empty());
     ClassInput in;
     std::string error;
     ASSERT_TRUE(readClassResults(makeClass("reteach2").results.string(), &in, &error)) << error;
     EXPECT_EQ(aggregateClass(in, 2).reteach.size(), 2u);
+}
+
+// A graded student whose report was read, its labs left to the caller.
+StudentResults gradedStudent(const std::string& name) {
+    StudentResults s;
+    s.row.student = name;
+    s.row.status = "graded";
+    s.row.report = name + "/report.json";
+    s.has_report = true;
+    return s;
 }
 
 // In memory: three students, goals P, Q, R; one mistake "m" behind both P and Q.
@@ -305,11 +324,7 @@ TEST(ClassReport, ReteachFoldsGoalsWithTheSameMistake) {
     in.labs = {"03-lab"};
     const auto student = [&](const std::string& name, bool p, bool q, bool r, const std::string& mp,
                              const std::string& mq) {
-        StudentResults s;
-        s.row.student = name;
-        s.row.status = "graded";
-        s.row.report = name + "/report.json";
-        s.has_report = true;
+        StudentResults s = gradedStudent(name);
         grader::ReportLab l;
         l.id = "03-lab";
         l.status = p && q && r ? "passed" : "failed";
@@ -333,6 +348,128 @@ TEST(ClassReport, ReteachFoldsGoalsWithTheSameMistake) {
     EXPECT_TRUE(r.reteach[1].mistake.empty());
     EXPECT_EQ(r.labs[0].mistakes[0].goals, (std::vector<std::string>{"P", "Q"}));
     EXPECT_EQ(r.needs_help.size(), 2u);
+}
+
+// One student of lab 04: goal G (its own scene sg) and goal H (scene sh, resting on G). `g_met`,
+// `h_met`; `h_because` gives H's not_met_because (a report graded with depends_on); `mistake` is
+// recognised on both scenes, as a mistake in G's work shows wherever G's work is drawn.
+StudentResults dependentStudent(const std::string& name, bool g_met, bool h_met, bool h_because,
+                                const std::string& mistake) {
+    StudentResults s = gradedStudent(name);
+    grader::ReportLab l;
+    l.id = "04-lab";
+    l.max_score = 2;
+    l.status = g_met && h_met ? "passed" : "failed";
+    l.goals = {goal("G", 1, g_met, "sg"), goal("H", 1, h_met, "sh")};
+    if (h_because) l.goals[1].not_met_because = {"G"};
+    l.scenes = {scene("sg", g_met ? "" : mistake), scene("sh", h_met ? "" : mistake)};
+    l.score = g_met + h_met;
+    s.report.labs = {l};
+    s.row.labs = {{"04-lab", l.score, 2.0, l.status}};
+    return s;
+}
+
+// A goal lost only because another goal it rests on was not met is that goal's failure: its
+// known mistake is listed under the goal it breaks, and re-teaching ranks by the students whose
+// own work for a goal failed. Reports of both kinds (depends_on's not_met_because; a goal judged
+// on the student's own work, which is met when that work is right) count the same.
+TEST(ClassReport, GoalsCountTheStudentsWhoseOwnWorkFailedThem) {
+    ClassInput in;
+    in.labs = {"04-lab"};
+    // Three students make mistake "m" in G's work. Older reports: H not met because of G. Newer
+    // ones: H judged on the student's own work, which is right, so H is met.
+    in.students.push_back(dependentStudent("old1", false, false, true, "m"));
+    in.students.push_back(dependentStudent("old2", false, false, true, "m"));
+    in.students.push_back(dependentStudent("new1", false, true, false, "m"));  // G's own work failed
+    // ...and one student fails H on their own work alone (mistake "n").
+    in.students.push_back(dependentStudent("own", true, false, false, "n"));
+    const ClassReport r = aggregateClass(in);
+    const LabClass& lab = r.labs[0];
+    ASSERT_EQ(lab.goals.size(), 2u);
+    EXPECT_EQ(lab.goals[0].own_failed, 3);  // G: old1, old2, new1
+    EXPECT_EQ(lab.goals[1].own_failed, 1);  // H: own
+    EXPECT_EQ(lab.goals[1].failed_because, 2);
+    ASSERT_EQ(lab.goals[1].mistakes.size(), 1u);
+    EXPECT_EQ(lab.goals[1].mistakes[0].mistake, "n");  // not m: m breaks G
+    for (const MistakeTally& t : lab.mistakes)
+        EXPECT_EQ(t.goals, std::vector<std::string>{t.mistake == "m" ? "G" : "H"}) << t.mistake;
+    ASSERT_EQ(r.reteach.size(), 2u);
+    EXPECT_EQ(r.reteach[0].goal, "G");
+    EXPECT_EQ(r.reteach[0].own_failed, 3);
+    EXPECT_EQ(r.reteach[0].mistake, "m");
+    EXPECT_EQ(r.reteach[1].goal, "H");
+    EXPECT_EQ(r.reteach[1].own_failed, 1);
+    EXPECT_EQ(r.reteach[1].mistake, "n");
+}
+
+// Untouched starter code is handed in but not attempted: not counted among those who handed the
+// lab in, no goal, no known mistake, and a reason to need help.
+TEST(ClassReport, NotAttemptedIsNeitherHandedInNorAMistake) {
+    Fixture f;
+    f.results = scratch("not_attempted") / "results";
+    f.summary.labs = {"01-lab"};
+    f.add("alice", "graded", {lab1("passed", true, true, true)});
+    f.add("bob", "graded", {lab1("failed", false, true, true, "gouraud")});
+    grader::ReportLab starter;
+    starter.id = "01-lab";
+    starter.status = "not_attempted";
+    starter.max_score = 4;
+    starter.message = "not attempted: the starter code";
+    f.add("sam", "graded", {starter});
+    f.write();
+    const ClassReport r = readClass(f);
+    const LabClass& l = r.labs[0];
+    EXPECT_EQ(l.handed_in, 2);
+    EXPECT_EQ(l.not_attempted, 1);
+    EXPECT_EQ(statusCount(l.statuses, "not_attempted"), 1);
+    EXPECT_EQ(l.goals[0].of, 2);
+    ASSERT_EQ(l.mistakes.size(), 1u);
+    EXPECT_EQ(l.mistakes[0].students, 1);
+    EXPECT_EQ(l.points.bins.size(), 5u);
+    int counted = 0;
+    for (const Histogram::Bin& b : l.points.bins) counted += b.count;
+    EXPECT_EQ(counted, 2);  // alice and bob
+    ASSERT_EQ(r.needs_help.size(), 1u);
+    EXPECT_EQ(r.needs_help[0].student, "sam");
+    EXPECT_EQ(r.needs_help[0].not_attempted, 1);
+    EXPECT_EQ(r.needs_help[0].reasons,
+              std::vector<std::string>{"not attempted (the starter code, untouched): 01-lab"});
+}
+
+// A summary written before the class's labs were recorded lists every lab of the course: the labs
+// no one handed in are left out, and totals are over the others. Named labs (--lab) all stay.
+TEST(ClassReport, TheClassLabsAreThoseHandedInUnlessNamed) {
+    Fixture f;
+    f.results = scratch("class_labs") / "results";
+    f.summary.labs = {"01-lab", "02-lab", "09-lab"};
+    f.add("alice", "graded",
+          {lab1("passed", true, true, true), lab2("passed", true, true), missingLab("09-lab")});
+    f.add("bob", "graded", {lab1("passed", true, true, true), missingLab("02-lab"), missingLab("09-lab")});
+    // A refused archive: every lab missing, with the refusal as their message.
+    std::vector<grader::ReportLab> refused = {missingLab("01-lab"), missingLab("02-lab"),
+                                              missingLab("09-lab")};
+    for (grader::ReportLab& l : refused) l.message = "carl.zip: not a zip archive";
+    f.add("carl", "bad_archive", refused);
+    for (batch::SummaryRow& row : f.summary.rows) row.max_total += 10;  // 09-lab's 10 points
+    f.write();
+    ClassReport r = readClass(f);
+    ASSERT_EQ(r.labs.size(), 2u);
+    EXPECT_EQ(r.labs[1].id, "02-lab");
+    EXPECT_DOUBLE_EQ(r.max_total, 6.0);
+    // Alice has every point of the class's labs: nothing to help with. Bob did not hand in 02-lab.
+    ASSERT_EQ(r.needs_help.size(), 2u);
+    EXPECT_EQ(r.needs_help[0].student, "carl");
+    EXPECT_EQ(r.needs_help[0].reasons, std::vector<std::string>{"archive refused (bad_archive)"});
+    EXPECT_EQ(r.needs_help[1].student, "bob");
+    EXPECT_EQ(r.needs_help[1].reasons, std::vector<std::string>{"not handed in: 02-lab"});
+    EXPECT_DOUBLE_EQ(r.needs_help[1].max_total, 6.0);
+
+    f.summary.labs_named = true;
+    f.write();
+    r = readClass(f);
+    ASSERT_EQ(r.labs.size(), 3u);
+    EXPECT_EQ(r.labs[2].handed_in, 0);
+    EXPECT_EQ(r.needs_help.size(), 3u);
 }
 
 TEST(ClassReport, MalformedReportIsNamedAndTheOthersCounted) {

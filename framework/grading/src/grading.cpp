@@ -19,6 +19,7 @@
 #include "grader/base/atomic_file.h"
 #include "grader/metrics/scoring.h"
 #include "grading_detail.h"
+#include "not_attempted.h"
 #include "shaderlab/base/timings.h"
 #include "shaderlab/grading/mistake_hints.h"
 #include "shaderlab/lab/lab_catalog.h"
@@ -646,6 +647,13 @@ grader::ReportLab gradeLab(const std::string& submission_dir, const std::string&
             (fs::path(submission_dir) / id).string() + ": the submission has no folder for this lab";
         return finish();
     }
+    // (A queued lab was found attempted when the queue was made.)
+    if (!queue && grading_detail::untouchedStarter(spec, submission_dir, &lab.message)) {
+        lab.status = "not_attempted";
+        lab.folder = fs::absolute(fs::path(submission_dir) / id).lexically_normal().string();
+        lab.files = spec.student_files;
+        return finish();
+    }
 
     // Stored goldens (no reference solution to render), or the reference's images kept in the
     // cache for the renderer it saw last, are read while the student's render runs: on a thread
@@ -781,7 +789,9 @@ grader::Report gradeSubmission(const std::string& submission_dir, const GradeOpt
     for (const std::string& id : ids) {
         parsed.push_back(parseLabSpec((fs::path(options.labs_root) / id).string()));
         std::error_code ec;
-        queued.push_back(parsed.back().ok && fs::is_directory(fs::path(submission_dir) / id, ec));
+        std::string untouched;
+        queued.push_back(parsed.back().ok && fs::is_directory(fs::path(submission_dir) / id, ec) &&
+                         !grading_detail::untouchedStarter(parsed.back().spec, submission_dir, &untouched));
         if (queued.back())
             jobs.push_back({&parsed.back().spec, (fs::path(submission_dir) / id).string(),
                             studentRenderOptions(submission_dir, id, options)});

@@ -168,7 +168,7 @@ class LabRunner {
         return std::find(spec_.student_files.begin(), spec_.student_files.end(), f) !=
                spec_.student_files.end();
     }
-    FileText readProgramFile(const std::string& file) const;
+    FileText readProgramFile(const std::string& file, std::string* case_note = nullptr) const;
     std::string programKey(const PassSpec& pass) const;
     const ShaderProgram& programOf(const PassSpec& pass) const { return programs_.at(programKey(pass)); }
 
@@ -188,6 +188,7 @@ class LabRunner {
     void setFrameUniforms(const PassRun& run, int iteration);
     void setLightUniforms(const PassRun& run);
     void drawFaces(const PassRun& run, int write);
+    void drawItems(const PassRun& run, const MaterialWarning& scene_warning);
     void drawMesh(const PassRun& run, const MaterialWarning& scene_warning, GpuMesh* mesh,
                   const glm::mat4& model, const Material& material);
     void readBack(const PassRun& run);
@@ -214,6 +215,7 @@ class LabRunner {
     std::vector<std::pair<GLuint, GLenum>> bound_units_;  // (unit, texture target) of the last pass
     std::string all_program_text_;                        // every program's prepared sources
     GLuint loop_guard_ = 0;                               // see createLoopGuard()
+    std::set<std::string> probed_programs_;               // drawn once in strips (loop_probe.h)
     MaterialTextures material_textures_;                  // glTF material textures, bound per draw
     std::map<const StandIn*, GLuint> stand_in_textures_;  // this scene's (RenderOptions::stand_ins)
 };

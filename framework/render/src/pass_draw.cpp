@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "lab_runner.h"
+#include "loop_probe.h"
 
 namespace shaderlab::render_detail {
 
@@ -130,7 +131,6 @@ void LabRunner::drawFaces(const PassRun& run, int write) {
     const SceneContext& ctx = run.ctx;
     const bool program_point_size =
         pass.draw == DrawKind::Procedural && mentionsIdentifier(prog.preparedText(0), "gl_PointSize");
-    static const Material kDefaultMaterial;
     const MaterialWarning scene_warning = [&](const std::string& message) {
         warnOnce("../" + ctx.spec->file, message);
     };
@@ -149,6 +149,10 @@ void LabRunner::drawFaces(const PassRun& run, int write) {
         drawn_buffers.push_back(written ? a : GL_NONE);
     }
     const bool masked = drawn_buffers != all_buffers;
+    // A program's first draw of the lab goes in strips, so that an endless loop costs one strip
+    // (loop_probe.h); a program with no loop needs none.
+    const bool probe =
+        prog.loopGuarded() && hasLoop(prog) && probed_programs_.insert(programKey(pass)).second;
     for (int face = 0; face < target.faces(); ++face) {
         glBindFramebuffer(GL_FRAMEBUFFER, target.fbos.at({write, face}));
         glViewport(0, 0, tspec.width, tspec.height);
@@ -156,28 +160,42 @@ void LabRunner::drawFaces(const PassRun& run, int write) {
         clearTarget(pass.state, target.depth != DepthMode::None);
         if (masked) glDrawBuffers(static_cast<GLsizei>(drawn_buffers.size()), drawn_buffers.data());
         setFramework(prog, file, "u_cube_face", GL_INT, [&](GLint l) { glUniform1i(l, face); });
-        if (pass.draw == DrawKind::Fullscreen) {
-            drawMesh(run, scene_warning, fullscreen_.get(), glm::mat4(1.0f), kDefaultMaterial);
-        } else if (pass.draw == DrawKind::Procedural) {
-            drawMesh(run, scene_warning, nullptr, glm::mat4(1.0f), kDefaultMaterial);
-        } else {
-            for (const DrawItem& item : ctx.scene->scene.draw_items) {
-                const Material& material =
-                    item.material >= 0 ? ctx.scene->scene.materials[static_cast<std::size_t>(item.material)]
-                                       : kDefaultMaterial;
-                // A mirroring transform turns the winding over; a double-sided material is not
-                // back-face culled (glTF 2.0, 3.9.6). Front-face culling, a lab's own technique
-                // (inverted-hull outlines), stays.
-                const bool unculled = material.double_sided && pass.state.cull == CullMode::Back;
-                if (item.mirrored) glFrontFace(GL_CW);
-                if (unculled) glDisable(GL_CULL_FACE);
-                drawMesh(run, scene_warning, ctx.scene->meshes[static_cast<std::size_t>(item.mesh)].get(),
-                         item.world, material);
-                if (item.mirrored) glFrontFace(GL_CCW);
-                if (unculled) glEnable(GL_CULL_FACE);
-            }
-        }
+        const auto draw = [&]() { drawItems(run, scene_warning); };
+        const bool clean =
+            probe ? drawProbingLoops(loop_guard_, tspec.width, tspec.height, draw) : (draw(), true);
         if (masked) glDrawBuffers(static_cast<GLsizei>(all_buffers.size()), all_buffers.data());
+        if (!clean) return;  // the guard check after the pass says where
+    }
+}
+
+// Every draw of one face of the pass: the fullscreen triangle, the procedural draw, or the
+// scene's meshes.
+void LabRunner::drawItems(const PassRun& run, const MaterialWarning& scene_warning) {
+    static const Material kDefaultMaterial;
+    const PassSpec& pass = run.pass;
+    const SceneContext& ctx = run.ctx;
+    if (pass.draw == DrawKind::Fullscreen) {
+        drawMesh(run, scene_warning, fullscreen_.get(), glm::mat4(1.0f), kDefaultMaterial);
+        return;
+    }
+    if (pass.draw == DrawKind::Procedural) {
+        drawMesh(run, scene_warning, nullptr, glm::mat4(1.0f), kDefaultMaterial);
+        return;
+    }
+    for (const DrawItem& item : ctx.scene->scene.draw_items) {
+        const Material& material = item.material >= 0
+                                       ? ctx.scene->scene.materials[static_cast<std::size_t>(item.material)]
+                                       : kDefaultMaterial;
+        // A mirroring transform turns the winding over; a double-sided material is not back-face
+        // culled (glTF 2.0, 3.9.6). Front-face culling, a lab's own technique (inverted-hull
+        // outlines), stays.
+        const bool unculled = material.double_sided && pass.state.cull == CullMode::Back;
+        if (item.mirrored) glFrontFace(GL_CW);
+        if (unculled) glDisable(GL_CULL_FACE);
+        drawMesh(run, scene_warning, ctx.scene->meshes[static_cast<std::size_t>(item.mesh)].get(), item.world,
+                 material);
+        if (item.mirrored) glFrontFace(GL_CCW);
+        if (unculled) glEnable(GL_CULL_FACE);
     }
 }
 

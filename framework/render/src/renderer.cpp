@@ -14,6 +14,7 @@
 
 #include "lab_runner.h"
 #include "shaderlab/base/paths.h"
+#include "shaderlab/base/student_files.h"
 #include "shaderlab/base/timings.h"
 #include "shaderlab/render/debug_view.h"
 
@@ -77,7 +78,7 @@ bool LabRunner::prepare() {
 
 // Student files come from the submission, every other program file from the lab folder (or the
 // course's shared folder): a submission can neither omit nor replace the instructor's shaders.
-FileText LabRunner::readProgramFile(const std::string& file) const {
+FileText LabRunner::readProgramFile(const std::string& file, std::string* case_note) const {
     if (isStudentFile(file)) {
         const auto given = options_.source_overrides.find(file);
         if (given != options_.source_overrides.end()) {
@@ -94,7 +95,7 @@ FileText LabRunner::readProgramFile(const std::string& file) const {
                                                  .lexically_relative(options_.containment_root)
                                                  .generic_string() +
                                              "/";
-        return readFileInside(root, prefix + file, kMaxShaderBytes);
+        return readStudentFile(root, prefix + file, file, kMaxShaderBytes, case_note);
     }
     const bool shared = file.rfind("shared/", 0) == 0;
     return readFileInside(shared ? spec_.labs_root : spec_.lab_dir, file, kMaxShaderBytes);
@@ -104,7 +105,9 @@ bool LabRunner::readSources() {
     for (const PassSpec& pass : spec_.passes) {
         for (const std::string* file : {&pass.program.vertex, &pass.program.fragment}) {
             if (sources_.count(*file)) continue;
-            FileText t = readProgramFile(*file);
+            std::string case_note;  // a file found by its case is graded, with a note (student_files.h)
+            FileText t = readProgramFile(*file, &case_note);
+            if (!case_note.empty()) warnOnce(*file, case_note);
             if (!t.ok) {
                 // Absent (or a link out of the submission): missing. Present but refused (too
                 // large, a folder): it cannot be compiled, which is a compile error naming why.
@@ -133,7 +136,10 @@ bool LabRunner::buildPrograms() {
             t.error = "include paths are relative to the lab folder (or shared/...) and have no '..'";
             return t;
         }
-        return readProgramFile(name);
+        std::string case_note;
+        FileText t = readProgramFile(name, &case_note);
+        if (!case_note.empty()) warnOnce(name, case_note);
+        return t;
     };
     for (const PassSpec& pass : spec_.passes) {
         const std::string key = programKey(pass);
@@ -322,12 +328,23 @@ LabRender renderLab(const LabSpec& spec, const std::string& shader_dir, const Re
     LabRender result;
     render_detail::LabRunner runner(spec, shader_dir, options, &result);
     if (!runner.prepare()) return result;
+    const auto asked = [&](const SceneSpec& s) {
+        return options.only_scenes.empty() ||
+               std::find(options.only_scenes.begin(), options.only_scenes.end(), s.name) !=
+                   options.only_scenes.end();
+    };
+    const std::size_t wanted =
+        static_cast<std::size_t>(std::count_if(spec.scenes.begin(), spec.scenes.end(), asked));
+    std::size_t drawn = 0;
     for (const SceneSpec& scene_spec : spec.scenes) {
-        if (!options.only_scenes.empty() && std::find(options.only_scenes.begin(), options.only_scenes.end(),
-                                                      scene_spec.name) == options.only_scenes.end())
-            continue;
+        if (!asked(scene_spec)) continue;
         if (!runner.renderScene(scene_spec)) break;
+        ++drawn;
     }
+    // An endless loop would cost every other scene as much again (loop_probe.h): they are left.
+    if (result.endless_loop && wanted > drawn + 1)
+        result.message += "; the lab's " + std::to_string(wanted - drawn - 1) +
+                          " other scenes were not drawn with this shader";
     return result;
 }
 

@@ -242,7 +242,7 @@ function renderGrade(s) {
   $('grade-state').textContent = g.pending ? '(grading your latest save…)' : '';
   const passed = lab.status === 'passed';
   const said = { passed: 'PASS', failed: 'FAILS', compile_error: 'DOES NOT COMPILE', link_error: 'DOES NOT LINK',
-    timeout: 'TIMED OUT', crashed: 'CRASHED', missing: 'MISSING' };
+    timeout: 'TIMED OUT', crashed: 'CRASHED', missing: 'MISSING', not_attempted: 'NOT ATTEMPTED' };
   badge.textContent = (said[lab.status] || lab.status.toUpperCase()) + ' ' + fmt(lab.score, 1) + ' / ' + fmt(lab.max_score, 1);
   badge.className = 'badge ' + (passed ? 'pass' : 'fail');
   $('grade-score').textContent = fmt(lab.score, 2) + ' of ' + fmt(lab.max_score, 2) + ' points (as `shaderlab check` gives them)';

@@ -91,7 +91,9 @@ PairResult makePair(const std::string& lab, const std::vector<Document>& docs, s
     p.a_in_b = double(shared) / double(own[i]);
     p.b_in_a = double(shared) / double(own[j]);
     p.score = double(shared) / double(std::min(own[i], own[j]));
-    p.flagged = p.score >= options.threshold && shared >= options.min_shared;
+    p.bar = flagBar(options, std::min(own[i], own[j]));
+    p.flagged = p.score >= p.bar && shared >= options.min_shared;
+    p.strong = p.flagged && p.score >= (p.bar + 1.0) / 2.0;
     return p;
 }
 
@@ -135,27 +137,37 @@ void comparePairs(const std::string& lab, const std::vector<Document>& docs, con
     out->stats.common_fingerprints = common.size();
     out->stats.common_limit = limit;
 
+    // Clusters join strong pairs only; the side-by-side view needs the files of every flagged one.
     UnionFind groups(n);
-    std::vector<bool> in_flagged(n, false);
-    struct Flagged {
+    std::vector<bool> in_strong(n, false), in_flagged(n, false);
+    struct Strong {
         std::size_t i, j;
         double score;
     };
-    std::vector<Flagged> flagged;
+    std::vector<Strong> strong;
+    std::vector<double> closest(n, 0.0);  // each document's best score
     for (const auto& [key, count] : shared) {
         const std::size_t i = key >> 32, j = key & 0xffffffffu;
+        const double score = double(count) / double(std::max<std::size_t>(1, std::min(own[i], own[j])));
+        closest[i] = std::max(closest[i], score);
+        closest[j] = std::max(closest[j], score);
         if (count < options.min_shared) continue;
         PairResult p = makePair(lab, docs, i, j, count, own, options);
         if (!p.flagged && p.score < options.list_from) continue;
         const bool a_is_i = p.a == docs[i].who;
         p.regions = a_is_i ? matchRegions(docs[i], docs[j], common, options.k, options.w)
                            : matchRegions(docs[j], docs[i], common, options.k, options.w);
-        if (p.flagged) {
+        if (p.flagged) in_flagged[i] = in_flagged[j] = true;
+        if (p.strong) {
             groups.unite(i, j);
-            in_flagged[i] = in_flagged[j] = true;
-            flagged.push_back(Flagged{i, j, p.score});
+            in_strong[i] = in_strong[j] = true;
+            strong.push_back(Strong{i, j, p.score});
         }
         out->pairs.push_back(std::move(p));
+    }
+    if (n > 0) {
+        std::nth_element(closest.begin(), closest.begin() + n / 2, closest.end());
+        out->stats.median_closest = closest[n / 2];
     }
     std::sort(out->pairs.begin(), out->pairs.end(), [](const PairResult& x, const PairResult& y) {
         if (x.flagged != y.flagged) return x.flagged;
@@ -168,13 +180,13 @@ void comparePairs(const std::string& lab, const std::vector<Document>& docs, con
 
     std::map<std::size_t, Cluster> by_root;
     for (std::size_t d = 0; d < n; ++d) {
-        if (!in_flagged[d]) continue;
+        if (in_flagged[d]) out->sources[sourceKey(lab, docs[d].who)] = docs[d].files;
+        if (!in_strong[d]) continue;
         Cluster& c = by_root[groups.find(d)];
         c.lab = lab;
         c.students.push_back(docs[d].who);
-        out->sources[sourceKey(lab, docs[d].who)] = docs[d].files;
     }
-    for (const Flagged& f : flagged) {
+    for (const Strong& f : strong) {
         Cluster& c = by_root[groups.find(f.i)];
         c.max_score = std::max(c.max_score, f.score);
     }

@@ -58,9 +58,14 @@ void writeMethod(std::ostringstream& o, const SimilarityOptions& opt) {
       << opt.k + opt.w - 1
       << " tokens or more is found), after Schleimer, Wilkerson and Aiken, SIGMOD 2003. The score is the "
          "share of the smaller document's fingerprints found in the other. A pair is flagged at "
-      << percent(opt.threshold) << " or more with at least " << opt.min_shared
-      << " shared fingerprints. A fingerprint in more than max(" << opt.common_min_documents << ", "
-      << percent(opt.common_share)
+      << percent(opt.threshold) << " + " << opt.length_margin
+      << " / &radic;n or more, n being the smaller document's fingerprints (short solutions written apart "
+         "share "
+         "much by chance: a short document needs more of it shared), with at least "
+      << opt.min_shared
+      << " shared fingerprints; a flagged pair at least halfway from its bar to 100 % is strong, and only "
+         "strong pairs join students into clusters. A fingerprint in more than max("
+      << opt.common_min_documents << ", " << percent(opt.common_share)
       << " of the documents) is a common idiom and ignored. A flag is a reason to read two solutions side "
          "by side, not a verdict.</p>\n";
 }
@@ -70,11 +75,12 @@ void writeLab(std::ostringstream& o, const SimilarityReport& report, const LabSt
     o << "<h2 id=\"" << htmlEscape(s.lab) << "\">" << htmlEscape(s.lab) << "</h2>\n<p>"
       << count(s.documents, "document") << " (" << s.empty_documents
       << " with nothing of their own once the starter is masked), " << count(s.pairs_flagged, "flagged pair")
-      << ", " << count(s.clusters, "cluster") << ".</p>\n";
+      << ", " << count(s.clusters, "cluster") << ". A student's closest match here scores "
+      << percent(s.median_closest) << " in the median: what work written apart shares in this lab.</p>\n";
     bool any_cluster = false;
     for (const Cluster& c : report.clusters) {
         if (c.lab != s.lab) continue;
-        if (!any_cluster) o << "<p>Clusters (students joined by flagged pairs):</p>\n<ul>\n";
+        if (!any_cluster) o << "<p>Clusters (students joined by strong pairs):</p>\n<ul>\n";
         any_cluster = true;
         o << "<li>" << c.students.size() << " students, up to " << percent(c.max_score) << ": ";
         for (std::size_t i = 0; i < c.students.size(); ++i) o << (i ? ", " : "") << who(c.students[i]);
@@ -87,12 +93,12 @@ void writeLab(std::ostringstream& o, const SimilarityReport& report, const LabSt
         if (p.lab != s.lab) continue;
         if (!any_pair)
             o << "<table>\n<tr><th>#</th><th>A</th><th>B</th><th>score</th><th>A in B</th><th>B in A</th>"
-                 "<th>shared</th><th>flagged</th><th>side by side</th></tr>\n";
+                 "<th>shared</th><th>why</th><th>side by side</th></tr>\n";
         any_pair = true;
         o << "<tr" << (p.flagged ? " class=\"flagged\"" : "") << "><td>" << i << "</td><td>" << who(p.a)
           << "</td><td>" << who(p.b) << "</td><td>" << percent(p.score) << "</td><td>" << percent(p.a_in_b)
           << "</td><td>" << percent(p.b_in_a) << "</td><td>" << p.shared << "</td><td>"
-          << (p.flagged ? "yes" : "no") << "</td><td>";
+          << htmlEscape(pairVerdict(p, report.options)) << "</td><td>";
         if (i < views.size() && !views[i].empty()) o << "<a href=\"" << htmlEscape(views[i]) << "\">view</a>";
         o << "</td></tr>\n";
     }
@@ -156,8 +162,8 @@ std::string pairHtml(const SimilarityReport& report, std::size_t index) {
       << kStyle << "</head><body>\n<p><a href=\"../../index.html#" << htmlEscape(p.lab)
       << "\">back</a></p>\n<h1>" << htmlEscape(p.lab) << ": " << who(p.a) << " and " << who(p.b)
       << "</h1>\n<p>score " << percent(p.score) << " (" << p.shared << " shared fingerprints; "
-      << percent(p.a_in_b) << " of A's found in B, " << percent(p.b_in_a) << " of B's in A)"
-      << (p.flagged ? ", flagged" : "") << ".</p>\n<ol>\n";
+      << percent(p.a_in_b) << " of A's found in B, " << percent(p.b_in_a) << " of B's in A).</p>\n<p>"
+      << htmlEscape(pairVerdict(p, report.options)) << ".</p>\n<ol>\n";
     for (std::size_t r = 0; r < p.regions.size(); ++r) {
         const MatchRegion& m = p.regions[r];
         o << "<li class=\"r" << r % 8 << "\">A " << htmlEscape(m.a.file) << " lines " << m.a.first_line << "-"

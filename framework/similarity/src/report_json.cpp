@@ -22,7 +22,7 @@ json range(const LineRange& r) {
     return json{{"file", r.file}, {"first_line", r.first_line}, {"last_line", r.last_line}};
 }
 
-json pair(const PairResult& p, std::size_t id, const std::string& view) {
+json pair(const PairResult& p, const SimilarityOptions& options, std::size_t id, const std::string& view) {
     json regions = json::array();
     for (const MatchRegion& r : p.regions)
         regions.push_back(json{{"a", range(r.a)}, {"b", range(r.b)}, {"fingerprints", r.fingerprints}});
@@ -36,7 +36,10 @@ json pair(const PairResult& p, std::size_t id, const std::string& view) {
                 {"shared", p.shared},
                 {"a_fingerprints", p.a_fingerprints},
                 {"b_fingerprints", p.b_fingerprints},
+                {"bar", rounded(p.bar)},
                 {"flagged", p.flagged},
+                {"strong", p.strong},
+                {"why", pairVerdict(p, options)},
                 {"view", view.empty() ? json(nullptr) : json(view)},
                 {"regions", regions}};
 }
@@ -55,13 +58,15 @@ std::string pairsJson(const SimilarityReport& report, const std::vector<std::str
              {"w", o.w},
              {"guaranteed_match_tokens", o.k + o.w - 1},
              {"threshold", o.threshold},
+             {"length_margin", o.length_margin},
              {"min_shared", o.min_shared},
              {"list_from", o.list_from},
              {"common_min_documents", o.common_min_documents},
              {"common_share", o.common_share},
              {"score",
-              "shared / min(a_fingerprints, b_fingerprints); flagged when score >= threshold and "
-              "shared >= min_shared"}};
+              "shared / min(a_fingerprints, b_fingerprints); flagged when score >= bar = threshold + "
+              "length_margin / sqrt(min(a_fingerprints, b_fingerprints)) and shared >= min_shared; strong "
+              "(joins a cluster) when score >= (bar + 1) / 2"}};
     json labs = json::array();
     for (const LabStats& s : report.labs)
         labs.push_back(json{{"lab", s.lab},
@@ -72,11 +77,12 @@ std::string pairsJson(const SimilarityReport& report, const std::vector<std::str
                             {"common_limit", s.common_limit},
                             {"pairs_listed", s.pairs_listed},
                             {"pairs_flagged", s.pairs_flagged},
-                            {"clusters", s.clusters}});
+                            {"clusters", s.clusters},
+                            {"median_closest", rounded(s.median_closest)}});
     out["labs"] = labs;
     json pairs = json::array();
     for (std::size_t i = 0; i < report.pairs.size(); ++i)
-        pairs.push_back(pair(report.pairs[i], i, i < views.size() ? views[i] : std::string()));
+        pairs.push_back(pair(report.pairs[i], o, i, i < views.size() ? views[i] : std::string()));
     out["pairs"] = pairs;
     json clusters = json::array();
     for (const Cluster& c : report.clusters) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <thread>
 
@@ -11,6 +12,7 @@
 #include "grader/base/untrusted_text.h"
 #include "pairs.h"
 #include "shaderlab/base/paths.h"
+#include "shaderlab/base/student_files.h"
 #include "shaderlab/lab/lab_spec.h"
 
 namespace fs = std::filesystem;
@@ -19,6 +21,26 @@ namespace shaderlab::similarity {
 
 std::string sourceKey(const std::string& lab, const StudentRef& who) {
     return lab + '\n' + who.cohort + '\n' + who.student;
+}
+
+double flagBar(const SimilarityOptions& options, std::size_t fingerprints) {
+    const double n = double(std::max<std::size_t>(1, fingerprints));
+    return std::min(1.0, options.threshold + options.length_margin / std::sqrt(n));
+}
+
+std::string pairVerdict(const PairResult& p, const SimilarityOptions& options) {
+    const std::size_t n = std::min(p.a_fingerprints, p.b_fingerprints);
+    const auto pct = [](double x) { return std::to_string(int(std::floor(x * 100.0 + 1e-9))) + " %"; };
+    const std::string shares = "shares " + std::to_string(p.shared) + " of the " + std::to_string(n) +
+                               " fingerprints of the smaller document (" + pct(p.score) + ")";
+    const std::string bar = "the bar for documents of " + std::to_string(n) + " fingerprints is " +
+                            pct(p.bar) + " (" + pct(options.threshold) + ", more for short ones)";
+    if (p.shared < options.min_shared)
+        return "not flagged: " + shares + ", fewer than " + std::to_string(options.min_shared) + " in all";
+    if (!p.flagged) return "not flagged: " + shares + "; " + bar;
+    return "flagged: " + shares + "; " + bar +
+           (p.strong ? "; strong (" + pct((p.bar + 1.0) / 2.0) + " or more): it joins a cluster"
+                     : "; below " + pct((p.bar + 1.0) / 2.0) + ", so it joins no cluster");
 }
 
 namespace {
@@ -64,9 +86,14 @@ bool readDocument(const SubmissionFolder& sub, const std::string& lab, const Lab
     const std::string who = (sub.cohort.empty() ? "" : sub.cohort + "/") + sub.student;
     for (const std::string& name : spec.student_files) {
         const std::string relative = lab + "/" + name;
-        // Not handed in: nothing to compare, and nothing to say (the grade says it).
-        if (!fs::exists(fs::symlink_status(fs::path(sub.root) / relative, ec))) continue;
-        const FileText f = readFileInside(sub.root, relative, options.max_file_bytes);
+        // Not handed in: nothing to compare, and nothing to say (the grade says it). A file named
+        // but for its case is graded (student_files.h), so it is compared too, with a note.
+        std::string case_note;
+        if (!fs::exists(fs::symlink_status(fs::path(sub.root) / relative, ec)) &&
+            findIgnoringCase(sub.root, relative).empty())
+            continue;
+        const FileText f = readStudentFile(sub.root, relative, relative, options.max_file_bytes, &case_note);
+        if (!case_note.empty()) notes->push_back(grader::printableText(who + ": " + case_note, 600));
         std::string why = f.ok ? detail::refuseText(f.text) : f.error;
         if (!why.empty()) {
             notes->push_back(grader::printableText(who + ": " + relative + " left out: " + why, 600));

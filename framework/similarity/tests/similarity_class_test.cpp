@@ -96,6 +96,58 @@ TEST(SimilarityClass, ClustersJoinFlaggedPairs) {
     EXPECT_EQ(r.labs[0].clusters, 1u);
 }
 
+// Two Blinn-Phong solutions written apart to the starter's template (tests/planted_class/blinn-a,
+// blinn-b) share 21 of their 27 fingerprints: over the old bar of 0.75, under the bar for documents
+// that short. A disguised copy of one of them is flagged, and strong, and its cluster does not
+// reach the other through the template pair.
+TEST(SimilarityClass, ShortSolutionsToOneTemplateAreNoCopyAndClustersDoNotChain) {
+    const fs::path root = scratch("template");
+    const fs::path planted = kSource / "tests/planted_class";
+    placeLab(root / "quinn", kPhong, {planted / "blinn-a", reference(kPhong)});
+    placeLab(root / "rosa", kPhong, {planted / "blinn-b", reference(kPhong)});
+    placeLab(root / "nina", kPhong, {planted / "blinn-a", reference(kPhong)}, disguise);
+    const std::vector<SubmissionFolder> subs = {student(root, "nina"), student(root, "quinn"),
+                                                student(root, "rosa")};
+    const auto pair = [](const SimilarityReport& r, const std::string& x, const std::string& y) {
+        for (const PairResult& p : r.pairs)
+            if ((p.a.student == x && p.b.student == y) || (p.a.student == y && p.b.student == x)) return p;
+        return PairResult{};
+    };
+    SimilarityOptions old_bar;
+    old_bar.length_margin = 0.0;
+    const SimilarityReport before = analyseSimilarity(kLabs, {kPhong}, subs, old_bar);
+    const PairResult apart_before = pair(before, "quinn", "rosa");
+    EXPECT_EQ(apart_before.shared, 21u);
+    EXPECT_TRUE(apart_before.flagged) << apart_before.score << ": the issue's case, flagged at 0.75";
+    EXPECT_FALSE(apart_before.strong);
+    // Even at the old bar, the cluster is the copy and its source only.
+    ASSERT_EQ(before.clusters.size(), 1u);
+    EXPECT_EQ(before.clusters[0].students, (std::vector<StudentRef>{{"nina", ""}, {"quinn", ""}}));
+
+    const SimilarityReport r = analyseSimilarity(kLabs, {kPhong}, subs);
+    const PairResult apart = pair(r, "quinn", "rosa");
+    EXPECT_FALSE(apart.flagged) << apart.score << " against a bar of " << apart.bar;
+    EXPECT_GT(apart.bar, 0.84);
+    EXPECT_EQ(pairVerdict(apart, r.options).rfind("not flagged: shares 21 of the 27 fingerprints", 0), 0u)
+        << pairVerdict(apart, r.options);
+    const PairResult copy = pair(r, "nina", "quinn");
+    EXPECT_TRUE(copy.flagged && copy.strong) << copy.score;
+    EXPECT_EQ(pairVerdict(copy, r.options).rfind("flagged: shares ", 0), 0u) << pairVerdict(copy, r.options);
+    EXPECT_FALSE(pair(r, "nina", "rosa").flagged);
+    ASSERT_EQ(r.clusters.size(), 1u);
+    EXPECT_EQ(r.clusters[0].students, (std::vector<StudentRef>{{"nina", ""}, {"quinn", ""}}));
+}
+
+TEST(SimilarityClass, TheBarRisesForShortDocuments) {
+    SimilarityOptions o;
+    EXPECT_DOUBLE_EQ(flagBar(o, 100), 0.80);
+    EXPECT_DOUBLE_EQ(flagBar(o, 400), 0.775);
+    EXPECT_NEAR(flagBar(o, 26), 0.848, 1e-3);
+    EXPECT_DOUBLE_EQ(flagBar(o, 0), 1.0);  // capped: nothing of one's own is never a copy by share
+    o.length_margin = 0.0;
+    EXPECT_DOUBLE_EQ(flagBar(o, 26), 0.75);
+}
+
 TEST(SimilarityClass, FingerprintsInTooManyDocumentsAreCommonIdioms) {
     const fs::path root = scratch("common");
     std::vector<SubmissionFolder> subs;

@@ -24,13 +24,23 @@ const std::set<std::string> kEditsOfTheReference = {
     "04-render-to-texture/alt-fragcoord-pattern",
     // pattern.frag: only `vec2 w = fwidth(p)` written out as the gradient's length
     "09-procedural-antialiasing/gradient-length",
-    // pattern.frag: only the stripes' integral, as a triangle wave
-    "09-procedural-antialiasing/triangle-wave",
-    // particles.vert and step.frag: texelFetch swapped for texture lookups, the rest the reference's
-    "10-particles/texture-at-texel-centres",
     // all four files are the reference's, but for the light-space position passed from lit.vert
     "11-shadow-mapping/light-space-in-vertex-shader",
 };
+
+// Edits of the reference too short to call a copy: the bar rises for short documents (similarity.h,
+// flagBar), since two short solutions written apart to one template share as much (the Blinn-Phong
+// pair of tests/planted_class: 21 of 27). They stay listed, for reading, but are not flagged.
+const std::set<std::string> kShortEditsUnderTheBar = {
+    // pattern.frag: only the stripes' integral, as a triangle wave (15 of 18 shared; bar 0.87)
+    "09-procedural-antialiasing/triangle-wave",
+    // particles.vert and step.frag: texelFetch swapped for texture lookups (22 of 28; bar 0.84)
+    "10-particles/texture-at-texel-centres",
+};
+
+bool editOfTheReference(const std::string& lab, const std::string& name) {
+    return kEditsOfTheReference.count(lab + "/" + name) + kShortEditsUnderTheBar.count(lab + "/" + name) > 0;
+}
 
 const PairResult* findPair(const SimilarityReport& r, const std::string& lab, const std::string& x,
                            const std::string& y) {
@@ -121,6 +131,11 @@ TEST(SimilarityCorpus, CopiesAreFlaggedAlternativesAreNot) {
     double highest_independent = 0.0;
     for (const auto& [lab, name] : c.alternatives) {
         const PairResult* p = findPair(report, lab, "reference", "alt-" + name);
+        if (kShortEditsUnderTheBar.count(lab + "/" + name)) {
+            EXPECT_TRUE(p && !p->flagged && p->score >= report.options.list_from)
+                << lab << "/" << name << " against the reference scores " << describe(p);
+            continue;
+        }
         const bool edit = kEditsOfTheReference.count(lab + "/" + name) != 0;
         EXPECT_EQ(p && p->flagged, edit)
             << lab << "/" << name << " against the reference scores " << describe(p)
@@ -139,8 +154,7 @@ TEST(SimilarityCorpus, CopiesAreFlaggedAlternativesAreNot) {
         for (const auto& [lab2, y] : c.alternatives) {
             if (lab != lab2 || x >= y) continue;
             const PairResult* p = findPair(report, lab, "alt-" + x, "alt-" + y);
-            if (kEditsOfTheReference.count(lab + "/" + x) && kEditsOfTheReference.count(lab + "/" + y))
-                continue;
+            if (editOfTheReference(lab, x) && editOfTheReference(lab, y)) continue;
             ++alt_pairs;
             alt_pairs_flagged += p && p->flagged;
             EXPECT_FALSE(p && p->flagged) << lab << ": " << x << " and " << y << " score " << describe(p);

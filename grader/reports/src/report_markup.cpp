@@ -626,8 +626,10 @@ void writeLookFirst(std::ostringstream& h, const Report& report, bool links) {
     }
     h << "<div class=\"card first\"><h2 style=\"margin-top:0;border:0\">Look here first</h2>\n";
     if (lab->scenes.empty()) {
-        h << "<p>" << link(labAnchor(lab->id), lab->id) << " did not render (" << escapeMarkup(lab->status)
-          << "). " << escapeMarkup(lab->message) << "</p>\n";
+        const bool untouched = lab->status == "not_attempted";  // the starter: nothing was drawn
+        h << "<p>" << link(labAnchor(lab->id), lab->id)
+          << (untouched ? " is not attempted yet" : " did not render (" + escapeMarkup(lab->status) + ")")
+          << ". " << escapeMarkup(lab->message) << "</p>\n";
         if (!lab->diagnostics.empty())
             h << "<pre>" << escapeMarkup(diagnosticLine(lab->diagnostics.front())) << "</pre>\n";
         h << "</div>\n";

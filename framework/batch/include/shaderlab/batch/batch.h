@@ -149,9 +149,12 @@ struct SummaryShard {
 
 struct Summary {
     std::string tool_version;
-    std::vector<std::string> labs;  // the lab columns, in order
-    std::vector<SummaryRow> rows;   // by student
-    SummaryShard shard;             // written only when shard.count > 0
+    std::vector<std::string> labs;  // the lab columns, in order: the labs the class was asked for
+    // The labs were named (--lab), rather than taken from what the class handed in. false in a
+    // summary written before it was recorded, whose columns were every lab of the course.
+    bool labs_named = false;
+    std::vector<SummaryRow> rows;  // by student
+    SummaryShard shard;            // written only when shard.count > 0
 };
 
 std::string summaryToJson(const Summary& summary);

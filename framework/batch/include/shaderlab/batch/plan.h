@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shaderlab/batch/batch.h"
@@ -34,6 +35,9 @@ struct BatchSettings {
     std::string exe;           // the program the workers run: `<exe> batch-worker ...`
     std::string labs_root;
     std::vector<std::string> all_lab_ids;  // every lab of labs_root (what a submission's root holds)
+    // The labs were named (--lab): every submission is graded in each of them, handed in or not.
+    // Otherwise each is graded in the labs it hands in (chooseClassLabs).
+    bool labs_named = false;
     std::string backend = "auto";
     std::string renderer;              // what probeRenderer() saw (workers.h), in the reference key
     std::string reference_root;        // empty: grade against the labs' own goldens
@@ -71,6 +75,7 @@ struct LabPlan {
     std::string id;
     std::string title;
     double max_score = 0.0;
+    std::vector<std::string> student_files;  // lab.json's: what a submission hands in for it
     std::string key;           // hash of what its grading depends on, besides the student's files
     std::string goldens_root;  // reference cache entry; empty: the lab's own goldens
     std::size_t ref_job = SIZE_MAX;
@@ -79,9 +84,14 @@ struct LabPlan {
 struct Submission {
     SubmissionSource source;
     std::string folder_name;  // its report folder below the results
-    std::string key;          // content + settings
+    std::string content_key;  // the program and the submission's files: names its unpacked zip
+    std::string key;          // content + settings + the class's labs
     std::string root;         // the folder graded (unpacked and unwrapped)
-    std::string shown_root;   // what its report names: `root`, or inside the zip ("a.zip/dir")
+    // The labs it hands in (a lab folder holding one of the lab's student files), in the order of
+    // the batch's labs; the others' folders, when there, are said in `lab_notes`.
+    std::vector<std::string> handed_in;
+    std::vector<std::pair<std::string, std::string>> lab_notes;  // lab -> why it is not handed in
+    std::string shown_root;  // what its report names: `root`, or inside the zip ("a.zip/dir")
     std::string status = "graded";
     std::string message;
     bool skipped = false;  // unchanged since its report
@@ -117,15 +127,24 @@ bool selectSubmissions(const std::string& dir, const std::string& out_dir, int s
                        std::vector<SubmissionSource>* sources, std::string* error,
                        SummaryShard* whole = nullptr);
 
+// The submissions into `plan->subs`: their files hashed, zips unpacked under the state folder
+// (once per content), wrapping folders skipped, and the labs of `plan->labs` each hands in.
+void surveySubmissions(const BatchSettings& settings, const ResultsFolder& folder,
+                       const std::vector<SubmissionSource>& sources, Plan* plan);
+
+// After surveySubmissions(): the labs the class was asked for, left in `plan->labs`. Those named
+// (--lab), or else those that at least one submission hands in, in the course's order: a class
+// handing in three labs of twelve is graded, and totalled, over three.
+void chooseClassLabs(const BatchSettings& settings, Plan* plan);
+
 // Each lab's key in `plan->labs`, and a job for each reference solution that the cache does
 // not hold yet.
 void planLabs(const BatchSettings& settings, const ResultsFolder& folder, Plan* plan);
 
-// The submissions, after planLabs(): unchanged ones skipped, zips unpacked under the state
-// folder, every lab folder hashed into a grading job (shared by identical folders) unless its
-// result is already there.
-void planSubmissions(const BatchSettings& settings, const ResultsFolder& folder,
-                     const std::vector<SubmissionSource>& sources, Plan* plan);
+// After planLabs(): each submission's key; unchanged ones skipped; every lab it hands in (every
+// lab, when they were named) hashed into a grading job (shared by identical folders) unless its
+// result is already there. A lab of the class it does not hand in gets no job.
+void planSubmissions(const BatchSettings& settings, const ResultsFolder& folder, Plan* plan);
 
 // Removes the zips unpacked for earlier versions of the submissions: `subs` must be every
 // submission of the results folder.

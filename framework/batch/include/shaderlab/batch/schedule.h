@@ -38,6 +38,12 @@ struct ScheduleHooks {
 void runJobs(Plan* plan, const ResultsFolder& folder, const BatchSettings& settings,
              const ScheduleHooks& hooks);
 
+// What the workers are doing now, for the progress line: the submission each worker started for and
+// its lab ("grading alice (01-phong), bob (02-toon) +1"), and the one running longest once it has
+// run 10 s ("; alice (01-phong) for 40 s"); "" when none runs. Never the last one finished: a lab
+// running to its limit would leave the line naming someone else for the whole wait.
+std::string describeRunning(const Plan& plan, std::chrono::steady_clock::time_point now);
+
 // Grades `sources` with `labs` into `folder` and writes summary.json and summary.csv, printing
 // the progress to stdout and the problems to stderr. `started`: when the command began, for the
 // figures printed at the end. Returns the exit code: 0, 1 when a worker failed, 2 when a report

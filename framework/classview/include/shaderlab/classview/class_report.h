@@ -32,6 +32,7 @@ struct ClassInput {
     std::string results_dir;  // absolute
     std::string tool_version;
     std::vector<std::string> labs;  // the summary's lab columns, in order
+    bool labs_named = false;        // the summary's: the labs were named (--lab), not handed in
     std::vector<StudentResults> students;
     std::vector<std::string> errors;  // "<file>: <problem>", one per report that could not be read
 };
@@ -71,11 +72,16 @@ struct GoalShare {
     double points = 0.0;
     int met = 0;
     int of = 0;  // students who handed the lab in and whose report was read
-    // Of those who did not meet it: the known mistakes recognised on its scenes (most first), how
-    // many did not render the lab at all (compile error, timeout, crash), and how many rendered it
-    // but showed no known mistake there.
-    std::vector<MistakeCount> mistakes;
+    // Of those who did not meet it: how many failed it on their own work for it (their report
+    // gives no other goal it was lost because of: `not_met_because` empty), how many lost it only
+    // because a goal it rests on was not met (reports graded with lab.json's depends_on), and how
+    // many did not render the lab at all (compile error, timeout, crash).
+    int own_failed = 0;
+    int failed_because = 0;
     int not_rendered = 0;
+    // Of those whose own work failed: the known mistakes recognised on its scenes (most first),
+    // and how many showed no known mistake there.
+    std::vector<MistakeCount> mistakes;
     int unexplained = 0;
     double share() const { return of > 0 ? double(met) / of : 0.0; }
 };
@@ -84,7 +90,7 @@ struct GoalShare {
 struct MistakeTally {
     std::string mistake, about;
     int students = 0;                // students in whose report it was recognised (once each)
-    std::vector<std::string> goals;  // ids of the unmet goals it was recognised behind, lab order
+    std::vector<std::string> goals;  // ids of the goals it breaks: own work failed where it was seen
     std::string scene, image;        // where it was recognised most often (image: a ReportPass name)
     // Sources of its pictures, absolute (empty: none): the reference's and a student's picture of
     // that scene and image, from the first report that showed it.
@@ -98,7 +104,8 @@ struct LabClass {
     std::string id, title;
     double max_score = 0.0;
     int students = 0;                    // rows of the summary
-    int handed_in = 0;                   // rows whose lab status is not "missing"
+    int handed_in = 0;                   // rows whose lab status is neither "missing" nor "not_attempted"
+    int not_attempted = 0;               // rows that handed in the starter code untouched
     std::vector<StatusCount> statuses;   // the closed set in order (then any other), zeros left out
     std::vector<GoalShare> goals;        // in the lab's order
     std::vector<MistakeTally> mistakes;  // most students first
@@ -106,21 +113,24 @@ struct LabClass {
     double mean = 0.0, median = 0.0;     // of those who handed it in
 };
 
-// A student short of some goal, or with a lab that did not render, or whose archive was refused.
+// A student who needs help (see aggregateClass): a lab not handed in, not attempted, not built or
+// rendered, or below kHelpBelowShare of its points, or an archive refused.
 struct StudentNeed {
     std::string student;
     std::string status;  // the submission's: graded, empty, bad_archive, ...
     std::string message;
-    int goals_met = 0, goals_total = 0;  // over every lab of the batch (not handed in: unmet)
-    int timeouts = 0, not_compiled = 0, crashed = 0, not_handed_in = 0;
-    double total = 0.0, max_total = 0.0;
-    std::string report_html;           // relative to the results folder; empty when there is none
-    std::vector<std::string> reasons;  // in plain words, most telling first
+    int goals_met = 0, goals_total = 0;  // over the class's labs (not handed in: unmet)
+    int timeouts = 0, not_compiled = 0, crashed = 0, not_handed_in = 0, not_attempted = 0;
+    int weak_labs = 0;                    // rendered, below kHelpBelowShare of their points
+    double total = 0.0, max_total = 0.0;  // over the class's labs
+    std::string report_html;              // relative to the results folder; empty when there is none
+    std::vector<std::string> reasons;     // in plain words, most telling first
 };
 
 struct ReteachItem {
     std::string lab, lab_title, goal, goal_title;
     int met = 0, of = 0;
+    int own_failed = 0;          // students whose own work for it failed (GoalShare::own_failed)
     std::string mistake, about;  // the known mistake most often behind it; empty when none
     int mistake_students = 0;
     std::string picture;  // the mistake's picture, relative to the output folder; empty: none
@@ -134,20 +144,33 @@ struct ClassReport {
     std::string results_dir;
     int submissions = 0;
     std::vector<StatusCount> submission_statuses;  // graded, then the archive refusals
-    double max_total = 0.0;
-    Histogram totals;  // every submission's total
+    double max_total = 0.0;                        // the points of the class's labs
+    Histogram totals;                              // every submission's total over the class's labs
     std::vector<LabClass> labs;
     std::vector<ReteachItem> reteach;     // at most `reteach_max`, fewest met first (see aggregateClass)
     std::vector<StudentNeed> needs_help;  // neediest first (see aggregateClass)
     std::vector<std::string> errors;      // ClassInput::errors
 };
 
-// Counts the class. Goals to re-teach are ranked by share met (then by students short of it),
-// leaving out those unmet only by labs that did not render, and a goal whose most frequent mistake
-// is that of a goal ranked before it is folded into that one. The students who need help are
-// ranked by share of goals met, then by timeouts, then by labs that did not compile or crashed,
-// then by total points, then by name. Students whose report could not be read are left out of
-// goals, mistakes and the needs-help list.
+// A rendered lab below this share of its points is a reason to need help.
+constexpr double kHelpBelowShare = 0.5;
+
+// Counts the class. The class's labs are the summary's columns: those named (--lab), or those the
+// class handed in (a summary written before that was recorded lists every lab of the course: the
+// labs no one handed in are left out). Each lab is counted over the students who handed it in (not
+// "missing", not "not_attempted"); totals are over the class's labs.
+//
+// Goals to re-teach are the goals students failed on their own work (GoalShare::own_failed),
+// ranked by the share of such students (then by their number); a goal lost only because of
+// another goal, or only where a lab did not render, is not one, and a known mistake is listed
+// under the goals it breaks, not those that rest on them. A goal whose most frequent mistake is
+// that of a goal ranked before it is folded into that one.
+//
+// A student needs help when the archive was refused, or a lab of the class was not handed in, not
+// attempted, did not build or render, or scored below kHelpBelowShare of its points; ranked by
+// share of goals met, then by timeouts, then by labs that did not compile or crashed, then by
+// total points, then by name. Students whose report could not be read are left out of goals,
+// mistakes and the needs-help list.
 ClassReport aggregateClass(const ClassInput& input, std::size_t reteach_max = 5);
 
 // class.json (docs/instructors.md, "What the class did not learn").

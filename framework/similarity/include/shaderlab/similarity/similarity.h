@@ -12,10 +12,15 @@
 // comparing any two texts; a fingerprint in too many documents (a common idiom) is ignored.
 //
 // score = shared / min(|A|, |B|): the share of the smaller document's fingerprints found in the
-// other (|X| counts X's distinct fingerprints, common ones left out). A pair is flagged when
-// score >= threshold and it shares at least min_shared fingerprints: a small document cannot be
-// called a copy on a handful of fingerprints. Clusters are the connected components of flagged
-// pairs. Earlier classes (cohorts) are candidates: a pair is reported only when one side is of
+// other (|X| counts X's distinct fingerprints, common ones left out). A pair is flagged when it
+// shares at least min_shared fingerprints (a small document cannot be called a copy on a handful)
+// and its score reaches the bar for its length, flagBar(): threshold + length_margin / sqrt(n),
+// n = min(|A|, |B|). A share measured on n fingerprints is uncertain by about 1 / sqrt(n), and
+// short solutions of a lab written apart share much by chance (the README dictates the formulas:
+// two Blinn-Phong solutions of 01-phong written apart share 21 of 26 fingerprints), so a short
+// document needs more of it shared. Clusters are the connected components of strong pairs, those
+// at least halfway from their bar to 1: a cluster never chains two groups through one pair near
+// the bar. Earlier classes (cohorts) are candidates: a pair is reported only when one side is of
 // the current class.
 //
 // Does not: grade, render, unpack zips (the command does, with the batch library), or decide
@@ -42,6 +47,9 @@ struct SimilarityOptions {
     std::size_t k = 12;
     std::size_t w = 6;
     double threshold = 0.75;
+    // The bar rises by length_margin / sqrt(n) above threshold for documents of n fingerprints:
+    // 0.85 for 26 (01-phong's solutions), 0.80 for 100, 0.775 for 400.
+    double length_margin = 0.5;
     std::size_t min_shared = 10;
     double list_from = 0.4;  // unflagged pairs scoring at least this (and min_shared) are listed too
     // A fingerprint in more than max(common_min_documents, common_share x documents of the lab)
@@ -87,10 +95,19 @@ struct PairResult {
     double score = 0.0;
     double a_in_b = 0.0, b_in_a = 0.0;  // shared / |A| and shared / |B|
     std::size_t shared = 0, a_fingerprints = 0, b_fingerprints = 0;
-    bool flagged = false;
+    double bar = 0.0;                  // flagBar() for min(a_fingerprints, b_fingerprints)
+    bool flagged = false;              // score >= bar and shared >= min_shared
+    bool strong = false;               // flagged and score >= (bar + 1) / 2: it joins a cluster
     std::vector<MatchRegion> regions;  // in a's order
 };
 
+// The score a pair whose smaller document holds `fingerprints` must reach to be flagged.
+double flagBar(const SimilarityOptions& options, std::size_t fingerprints);
+
+// Why the pair is flagged, or listed without a flag, in one sentence for the page and pairs.json.
+std::string pairVerdict(const PairResult& pair, const SimilarityOptions& options);
+
+// Students joined by strong pairs (PairResult::strong).
 struct Cluster {
     std::string lab;
     std::vector<StudentRef> students;  // sorted
@@ -105,6 +122,9 @@ struct LabStats {
     std::size_t common_fingerprints = 0;
     std::size_t common_limit = 0;  // documents a fingerprint may be in before it counts as common
     std::size_t pairs_listed = 0, pairs_flagged = 0, clusters = 0;
+    // The class's own level: the median, over its documents, of each one's closest match's score
+    // (0 for a document that shares nothing). Work written apart in this lab shares about this much.
+    double median_closest = 0.0;
 };
 
 struct SourceFile {

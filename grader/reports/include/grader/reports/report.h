@@ -15,7 +15,8 @@ constexpr int kReportSchemaVersion = 2;
 
 // The closed set of lab and scene statuses.
 //   passed, failed: rendered and judged; compile_error, link_error: the shaders did not build;
-//   timeout, crashed: the render process was stopped or died; missing: a student file is absent.
+//   timeout, crashed: the render process was stopped or died; missing: a student file is absent;
+//   not_attempted: the student files are the lab's starter code, unchanged (nothing drawn, 0 points).
 // render_error (a GL error or a broken scene file) is reported as "crashed" with its message.
 // A compile, link or framework message (docs/report-format.md): `message` in plain words, an
 // `explanation` for the common mistakes, the student's `source_line` with `column` (1-based, 0:
