@@ -2,7 +2,8 @@
 // 04-render-to-texture, passes "uv_check" and "mesh": colour the mesh from a texture, then light it.
 // u_texture is the pattern target in the "mesh" pass, and a UV test grid (uv_grid.png) in the
 // "uv_check" pass: the same code must put both on the mesh the same way. The lab sets up the
-// sampler (trilinear filtering with mipmaps, wrap mode repeat); your job is the coordinate.
+// sampler (trilinear filtering with mipmaps, wrap mode repeat); your job is the coordinate and the
+// lookup.
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -17,10 +18,25 @@ uniform vec3 u_light_color[SL_MAX_LIGHTS];
 
 out vec4 o_color;
 
-void main() {
-    // TODO(student): read the surface colour from u_texture at the interpolated texture
-    // coordinate, repeated u_tiling times. Let texture() do the filtering: it picks the mipmap
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The coordinate to read the texture at: the mesh's texture coordinate, repeated u_tiling times
+// across the mesh's 0..1 range.
+vec2 tiledCoord(vec2 texcoord) {
+    // TODO(student): the sampler repeats the texture outside 0..1 by itself (wrap mode repeat).
+    return vec2(0.0);
+}
+
+// The surface colour at the texture coordinate uv.
+vec3 surfaceColor(vec2 uv) {
+    // TODO(student): read u_texture at uv. Let texture() do the filtering: it picks the mipmap
     // level from how fast your coordinate changes from pixel to pixel.
+    return vec3(0.8);
+}
+
+void main() {
+    // TODO(student): the surface colour at this fragment's tiled texture coordinate.
     vec3 albedo = vec3(0.8);
 
     // Given: ambient + Lambert diffuse, so the shape reads.

@@ -30,17 +30,26 @@ out vec4 o_color;
 
 const float PI = 3.14159265358979;
 
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// Where the content of the texel at uv was at time 0. The pattern at time t is the pattern at
+// time 0 shifted by velocity * t, so look it up at the point that was here t seconds ago.
+vec2 movedPoint(vec2 uv, float time) {
+    // TODO(student): use the velocity and the time (in seconds).
+    return uv;
+}
+
+// The stripe mask at p, between 0 (the background) and 1 (a stripe).
+float stripeMask(vec2 p) {
+    // TODO(student): the phase of the stripes at p, in cycles (one cycle = one stripe and one
+    // gap): frequency . p, plus the sideways wobble that depends on p.t. Then a sine with a period
+    // of one cycle, sharpened by smoothstep(-softness, softness, ...) into soft-edged stripes.
+    return 0.0;
+}
+
 void main() {
-    // TODO(student): move the pattern with time. The pattern at time t is the pattern at time 0
-    // shifted by velocity * t, so look it up at the point that was here t seconds ago.
-    vec2 p = v_uv;
-
-    // TODO(student): the phase of the stripes at p, in cycles (one cycle = one stripe and one gap):
-    // frequency . p, plus the sideways wobble that depends on p.t.
-    float phase = 0.0;
-
-    // TODO(student): turn the phase into a stripe mask between 0 and 1: a sine with a period of
-    // one cycle, sharpened by smoothstep(-softness, softness, ...) into soft-edged stripes.
+    // TODO(student): the stripe mask at the point movedPoint gives for this texel and u_time.
     float stripe = 0.0;
 
     o_color = vec4(mix(u_background, u_stripe_color, stripe), 1.0);

@@ -3,9 +3,8 @@
 // w(x, y) = exp(-(x^2 + y^2) / (2 sigma^2)), so near texels count more than far ones.
 
 in vec2 v_uv;  // (0, 0) bottom-left .. (1, 1) top-right: the centre of this fragment's texel
-// (Reading by texelFetch from ivec2(gl_FragCoord.xy) instead? Clamp every index to the texture,
-// as the README says, and delete this line and what reads it: the grader warns about an input a
-// shader never uses.)
+// (Reading by texelFetch instead? The texel under uv is ivec2(uv / texel); clamp every index to the
+// texture, as the README says.)
 
 uniform sampler2D u_scene;
 uniform int u_gauss_radius;   // r, in texels: taps from -r to r on each axis
@@ -13,8 +12,22 @@ uniform float u_gauss_sigma;  // sigma, the standard deviation, in texels
 
 out vec4 o_color;
 
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// One texel in uv units, as in blur_box.frag.
+vec2 texelSize() {
+    // TODO(student)
+    return vec2(0.0);
+}
+
+// The Gaussian blur at uv: the (2r+1) x (2r+1) taps one texel apart, r = radius, each weighed by
+// w(x, y), divided by the sum of the weights used (the README says why not 1 / (2 pi sigma^2)).
+vec3 gaussianBlur(vec2 uv, vec2 texel, int radius, float sigma) {
+    // TODO(student)
+    return texture(u_scene, uv).rgb;
+}
+
 void main() {
-    // TODO(student): loop over the (2r+1) x (2r+1) taps, weigh each by w(x, y), and divide the
-    // weighted sum by the sum of the weights you used (the README says why not 1 / (2 pi sigma^2)).
-    o_color = vec4(texture(u_scene, v_uv).rgb, 1.0);
+    o_color = vec4(gaussianBlur(v_uv, texelSize(), u_gauss_radius, u_gauss_sigma), 1.0);
 }

@@ -3,18 +3,35 @@
 // Sobel kernels and write its magnitude as a grey: bright where the picture changes fast.
 
 in vec2 v_uv;  // (0, 0) bottom-left .. (1, 1) top-right: the centre of this fragment's texel
-// (Reading by texelFetch from ivec2(gl_FragCoord.xy) instead? Clamp every index to the texture,
-// as the README says, and delete this line and what reads it: the grader warns about an input a
-// shader never uses.)
+// (Reading by texelFetch instead? The texel under uv is ivec2(uv / texel); clamp every index to the
+// texture, as the README says.)
 
 uniform sampler2D u_scene;
 
 out vec4 o_color;
 
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The luma of a colour, BT.709 weights, as in grayscale.frag.
+float luma(vec3 color) {
+    // TODO(student)
+    return 0.0;
+}
+
+// One texel in uv units, as in blur_box.frag.
+vec2 texelSize() {
+    // TODO(student)
+    return vec2(0.0);
+}
+
+// The edge strength at uv: the luma of the 3x3 texels around it (one texel apart), the horizontal
+// and vertical Sobel kernels applied to get gx and gy, and sqrt(gx^2 + gy^2).
+float sobelMagnitude(vec2 uv, vec2 texel) {
+    // TODO(student)
+    return 0.0;
+}
+
 void main() {
-    vec2 uv = v_uv;  // this fragment's texture coordinate: the centre of the 3x3 neighbourhood
-    // TODO(student): read the luma (BT.709 weights, as in grayscale.frag) of the 3x3 texels
-    // around this one, apply the horizontal and vertical Sobel kernels to get gx and gy, and
-    // write sqrt(gx^2 + gy^2) to all three channels.
-    o_color = vec4(0.0, 0.0, 0.0, 1.0);
+    o_color = vec4(vec3(sobelMagnitude(v_uv, texelSize())), 1.0);
 }

@@ -16,12 +16,26 @@ uniform vec2 u_direction;  // (1, 0): horizontal; (0, 1): vertical
 
 out vec4 o_color;
 
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The weight w_|k| of the tap k texels from the centre, k = -3..3.
+float tapWeight(int k) {
+    // TODO(student): the Gaussian weights w_0..w_3 for sigma = 1.5, normalised over the 7 taps (a
+    // constant table, or computed here). For now only the centre tap counts.
+    return k == 0 ? 1.0 : 0.0;
+}
+
+// One texel of the input along direction, in texture coordinates.
+vec2 tapStep(vec2 direction) {
+    // TODO(student): the size of one texel of u_image (textureSize gives the input's size in
+    // texels; u_resolution would be the target's, which is not the same here).
+    return vec2(0.0);
+}
+
 void main() {
-    // TODO(student): the size of one texel of u_image in texture coordinates (textureSize gives
-    // the input's size in texels; u_resolution would be the target's, which is not the same here).
-    // TODO(student): the Gaussian weights w_0..w_3 for sigma = 1.5, normalised over the 7 taps.
-    // TODO(student): sum the 7 taps v_uv + k * (one texel along u_direction), k = -3..3, each times w_|k|.
-    // For now this pass copies its input.
+    // TODO(student): sum the 7 taps v_uv + k * tapStep(u_direction), k = -3..3, each times
+    // tapWeight(k). For now this pass copies its input.
     vec3 sum = texture(u_image, v_uv).rgb;
     o_color = vec4(sum, 1.0);
 }

@@ -19,10 +19,25 @@ uniform float u_exposure;
 
 out vec4 o_color;
 
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The glare at uv: the three levels, weighted by u_level_weights.
+vec3 glare(vec2 uv) {
+    // TODO(student)
+    return vec3(0.0);
+}
+
+// Tone mapping: the HDR colour times u_exposure, through x / (1 + x) (Reinhard's operator, per
+// colour component).
+vec3 toneMap(vec3 hdr) {
+    // TODO(student)
+    return hdr;
+}
+
 void main() {
     vec3 scene = texture(u_scene, v_uv).rgb;
-    // TODO(student): add the three levels, weighted by u_level_weights, to the scene.
-    // TODO(student): tone-map the sum (times u_exposure) with x / (1 + x).
+    // TODO(student): add the glare to the scene, then tone-map the sum (in that order).
     // For now this shows the scene as it is, clamped by the display.
     o_color = vec4(scene, 1.0);
 }

@@ -18,10 +18,19 @@ uniform vec3 u_light_color[SL_MAX_LIGHTS];
 
 out vec4 o_color;
 
+// Coordinates beyond 1 are fine: the target's wrap mode is "repeat", and the derivatives of
+// texcoord * u_tiling stay smooth, so the mipmap level is chosen right everywhere.
+vec2 tiledCoord(vec2 texcoord) {
+    return texcoord * u_tiling;
+}
+
+// texture() picks the mipmap level from how fast uv changes between neighbouring pixels.
+vec3 surfaceColor(vec2 uv) {
+    return texture(u_texture, uv).rgb;
+}
+
 void main() {
-    // Coordinates beyond 1 are fine: the target's wrap mode is "repeat", and the derivatives of
-    // v_texcoord * u_tiling stay smooth, so the mipmap level is chosen right everywhere.
-    vec3 albedo = texture(u_texture, v_texcoord * u_tiling).rgb;
+    vec3 albedo = surfaceColor(tiledCoord(v_texcoord));
 
     vec3 n = normalize(v_world_normal);
     vec3 light = vec3(u_ambient);

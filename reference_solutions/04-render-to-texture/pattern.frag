@@ -30,9 +30,19 @@ out vec4 o_color;
 
 const float PI = 3.14159265358979;
 
-void main() {
-    vec2 p = v_uv - u_velocity * u_time;
+// A picture moved by d shows at x what it showed at x - d, so the point to look up is uv minus
+// the distance travelled (velocity in texture widths per second, time in seconds).
+vec2 movedPoint(vec2 uv, float time) {
+    return uv - u_velocity * time;
+}
+
+// The stripe mask at p: 0 in the gaps, 1 on the stripes, a smooth ramp between.
+float stripeMask(vec2 p) {
     float phase = dot(u_frequency, p) + u_wobble * sin(2.0 * PI * p.y);
-    float stripe = smoothstep(-u_softness, u_softness, sin(2.0 * PI * phase));
+    return smoothstep(-u_softness, u_softness, sin(2.0 * PI * phase));
+}
+
+void main() {
+    float stripe = stripeMask(movedPoint(v_uv, u_time));
     o_color = vec4(mix(u_background, u_stripe_color, stripe), 1.0);
 }

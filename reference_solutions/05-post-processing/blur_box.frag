@@ -10,15 +10,23 @@ uniform int u_box_radius;  // r, in texels
 
 out vec4 o_color;
 
-void main() {
-    // One texel in uv units: uv runs 0..1 over the whole texture, so a texel is 1 / its size.
-    vec2 texel = 1.0 / vec2(textureSize(u_scene, 0));
+// One texel in uv units: uv runs 0..1 over the whole texture, so a texel is 1 / its size, which
+// is not the same across (1/320) as up (1/240).
+vec2 texelSize() {
+    return 1.0 / vec2(textureSize(u_scene, 0));
+}
+
+vec3 boxBlur(vec2 uv, vec2 texel, int radius) {
     vec3 sum = vec3(0.0);
-    for (int y = -u_box_radius; y <= u_box_radius; ++y) {
-        for (int x = -u_box_radius; x <= u_box_radius; ++x) {
-            sum += texture(u_scene, v_uv + vec2(x, y) * texel).rgb;
+    for (int y = -radius; y <= radius; ++y) {
+        for (int x = -radius; x <= radius; ++x) {
+            sum += texture(u_scene, uv + vec2(x, y) * texel).rgb;
         }
     }
-    float side = float(2 * u_box_radius + 1);
-    o_color = vec4(sum / (side * side), 1.0);
+    float side = float(2 * radius + 1);
+    return sum / (side * side);
+}
+
+void main() {
+    o_color = vec4(boxBlur(v_uv, texelSize(), u_box_radius), 1.0);
 }

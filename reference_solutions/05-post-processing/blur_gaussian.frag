@@ -14,17 +14,25 @@ uniform float u_gauss_sigma;  // standard deviation, in texels
 
 out vec4 o_color;
 
-void main() {
-    vec2 texel = 1.0 / vec2(textureSize(u_scene, 0));
-    float two_sigma_sq = 2.0 * u_gauss_sigma * u_gauss_sigma;
+// One texel in uv units (see blur_box.frag).
+vec2 texelSize() {
+    return 1.0 / vec2(textureSize(u_scene, 0));
+}
+
+vec3 gaussianBlur(vec2 uv, vec2 texel, int radius, float sigma) {
+    float two_sigma_sq = 2.0 * sigma * sigma;
     vec3 sum = vec3(0.0);
     float weight_sum = 0.0;
-    for (int y = -u_gauss_radius; y <= u_gauss_radius; ++y) {
-        for (int x = -u_gauss_radius; x <= u_gauss_radius; ++x) {
+    for (int y = -radius; y <= radius; ++y) {
+        for (int x = -radius; x <= radius; ++x) {
             float w = exp(-float(x * x + y * y) / two_sigma_sq);
-            sum += w * texture(u_scene, v_uv + vec2(x, y) * texel).rgb;
+            sum += w * texture(u_scene, uv + vec2(x, y) * texel).rgb;
             weight_sum += w;
         }
     }
-    o_color = vec4(sum / weight_sum, 1.0);
+    return sum / weight_sum;
+}
+
+void main() {
+    o_color = vec4(gaussianBlur(v_uv, texelSize(), u_gauss_radius, u_gauss_sigma), 1.0);
 }

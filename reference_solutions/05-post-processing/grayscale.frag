@@ -14,8 +14,11 @@ out vec4 o_color;
 
 const vec3 kLumaWeights = vec3(0.2126, 0.7152, 0.0722);  // BT.709; they sum to 1, so white stays white
 
+float luma(vec3 color) {
+    return dot(color, kLumaWeights);
+}
+
 void main() {
     vec3 color = texture(u_scene, v_uv).rgb;
-    float luma = dot(color, kLumaWeights);
-    o_color = vec4(vec3(luma), 1.0);
+    o_color = vec4(vec3(luma(color)), 1.0);
 }

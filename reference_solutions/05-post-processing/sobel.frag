@@ -19,19 +19,31 @@ out vec4 o_color;
 
 const vec3 kLumaWeights = vec3(0.2126, 0.7152, 0.0722);
 
-// Luma of the texel (x, y) texels away from this fragment's.
-float luma(vec2 texel, int x, int y) {
-    return dot(texture(u_scene, v_uv + vec2(x, y) * texel).rgb, kLumaWeights);
+float luma(vec3 color) {
+    return dot(color, kLumaWeights);
 }
 
-void main() {
-    vec2 texel = 1.0 / vec2(textureSize(u_scene, 0));
-    float top_left = luma(texel, -1, 1), top = luma(texel, 0, 1), top_right = luma(texel, 1, 1);
-    float left = luma(texel, -1, 0), right = luma(texel, 1, 0);
-    float bottom_left = luma(texel, -1, -1), bottom = luma(texel, 0, -1), bottom_right = luma(texel, 1, -1);
+// One texel in uv units (see blur_box.frag).
+vec2 texelSize() {
+    return 1.0 / vec2(textureSize(u_scene, 0));
+}
+
+// The length of the Sobel gradient of luma at uv, the taps one texel apart.
+float sobelMagnitude(vec2 uv, vec2 texel) {
+    float top_left = luma(texture(u_scene, uv + vec2(-1, 1) * texel).rgb);
+    float top = luma(texture(u_scene, uv + vec2(0, 1) * texel).rgb);
+    float top_right = luma(texture(u_scene, uv + vec2(1, 1) * texel).rgb);
+    float left = luma(texture(u_scene, uv + vec2(-1, 0) * texel).rgb);
+    float right = luma(texture(u_scene, uv + vec2(1, 0) * texel).rgb);
+    float bottom_left = luma(texture(u_scene, uv + vec2(-1, -1) * texel).rgb);
+    float bottom = luma(texture(u_scene, uv + vec2(0, -1) * texel).rgb);
+    float bottom_right = luma(texture(u_scene, uv + vec2(1, -1) * texel).rgb);
 
     float gx = (top_right + 2.0 * right + bottom_right) - (top_left + 2.0 * left + bottom_left);
     float gy = (top_left + 2.0 * top + top_right) - (bottom_left + 2.0 * bottom + bottom_right);
-    float magnitude = sqrt(gx * gx + gy * gy);
-    o_color = vec4(vec3(magnitude), 1.0);
+    return sqrt(gx * gx + gy * gy);
+}
+
+void main() {
+    o_color = vec4(vec3(sobelMagnitude(v_uv, texelSize())), 1.0);
 }

@@ -24,13 +24,22 @@ out vec4 o_color;
 // w_0 .. w_3 for sigma = 1.5; w_0 + 2 (w_1 + w_2 + w_3) = 1.
 const float c_weights[4] = float[4](0.270682149, 0.216745321, 0.111280758, 0.036632845);
 
+// The weight of the tap k texels from the centre, k = -3..3: the kernel is symmetric.
+float tapWeight(int k) {
+    return c_weights[abs(k)];
+}
+
+// One texel of the input along direction, in texture coordinates.
+vec2 tapStep(vec2 direction) {
+    return direction / vec2(textureSize(u_image, 0));
+}
+
 void main() {
-    vec2 texel = 1.0 / vec2(textureSize(u_image, 0));
-    vec2 offset = u_direction * texel;
-    vec3 sum = c_weights[0] * texture(u_image, v_uv).rgb;
+    vec2 offset = tapStep(u_direction);
+    vec3 sum = tapWeight(0) * texture(u_image, v_uv).rgb;
     for (int k = 1; k <= 3; ++k) {
-        sum += c_weights[k] * texture(u_image, v_uv + float(k) * offset).rgb;
-        sum += c_weights[k] * texture(u_image, v_uv - float(k) * offset).rgb;
+        sum += tapWeight(k) * texture(u_image, v_uv + float(k) * offset).rgb;
+        sum += tapWeight(-k) * texture(u_image, v_uv - float(k) * offset).rgb;
     }
     o_color = vec4(sum, 1.0);
 }

@@ -23,10 +23,19 @@ uniform float u_exposure;
 
 out vec4 o_color;
 
+// The glare: the three blurred levels, each weighted by its entry of u_level_weights.
+vec3 glare(vec2 uv) {
+    return u_level_weights.x * texture(u_bloom0, uv).rgb + u_level_weights.y * texture(u_bloom1, uv).rgb +
+           u_level_weights.z * texture(u_bloom2, uv).rgb;
+}
+
+// Reinhard's operator on the exposed HDR colour, per component: 0..inf onto 0..1.
+vec3 toneMap(vec3 hdr) {
+    vec3 x = u_exposure * hdr;
+    return x / (1.0 + x);
+}
+
 void main() {
     vec3 scene = texture(u_scene, v_uv).rgb;
-    vec3 glare = u_level_weights.x * texture(u_bloom0, v_uv).rgb + u_level_weights.y * texture(u_bloom1, v_uv).rgb +
-                 u_level_weights.z * texture(u_bloom2, v_uv).rgb;
-    vec3 x = u_exposure * (scene + glare);
-    o_color = vec4(x / (1.0 + x), 1.0);
+    o_color = vec4(toneMap(scene + glare(v_uv)), 1.0);
 }

@@ -11,8 +11,11 @@
 //   stripe = smoothstep(-softness, softness, sin(2 pi phase))
 //   colour = mix(background, stripe colour, stripe)
 
-in vec2 v_uv;
+in vec2 v_uv;  // (s, t) of this texel
+// (gl_FragCoord.xy / u_resolution is the same (s, t) in this pass. If you use that instead, delete
+// the v_uv line above, or the grader warns that it is never used.)
 
+uniform vec2 u_resolution;   // the target's size in texels, 256 x 256
 uniform float u_time;        // seconds, fixed per graded scene
 uniform vec2 u_frequency;    // stripes across the texture along s and t (whole numbers, so it tiles)
 uniform vec2 u_velocity;     // how far the pattern travels per second, in texture units
@@ -27,15 +30,25 @@ out vec4 o_color;
 
 const float PI = 3.14159265358979;
 
-void main() {
-    // Where this texel was at time 0: the pattern has moved by velocity * time since.
-    vec2 p = v_uv - u_velocity * u_time;
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
 
+// Where the content of the texel at uv was at time 0. The pattern at time t is the pattern at
+// time 0 shifted by velocity * t, so look it up at the point that was here t seconds ago.
+vec2 movedPoint(vec2 uv, float time) {
+    return uv - u_velocity * time;
+}
+
+// The stripe mask at p, between 0 (the background) and 1 (a stripe).
+float stripeMask(vec2 p) {
     float phase = dot(u_frequency, p) + u_wobble * sin(2.0 * PI * p.y);
-
     // smoothstep written out: a clamped ramp, then the cubic 3x^2 - 2x^3 that eases both ends.
     float x = clamp((sin(2.0 * PI * phase) + u_softness) / (2.0 * u_softness), 0.0, 1.0);
-    float stripe = x * x * (3.0 - 2.0 * x);
+    return x * x * (3.0 - 2.0 * x);
+}
+
+void main() {
+    float stripe = stripeMask(movedPoint(v_uv, u_time));
 
     o_color = vec4(mix(u_background, u_stripe_color, stripe), 1.0);
 }

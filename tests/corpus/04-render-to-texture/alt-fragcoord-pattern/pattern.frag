@@ -11,9 +11,7 @@
 //   stripe = smoothstep(-softness, softness, sin(2 pi phase))
 //   colour = mix(background, stripe colour, stripe)
 
-in vec2 v_uv;
-
-uniform vec2 u_resolution;   // the pattern target's size
+uniform vec2 u_resolution;   // the target's size in texels, 256 x 256
 uniform float u_time;        // seconds, fixed per graded scene
 uniform vec2 u_frequency;    // stripes across the texture along s and t (whole numbers, so it tiles)
 uniform vec2 u_velocity;     // how far the pattern travels per second, in texture units
@@ -28,14 +26,25 @@ out vec4 o_color;
 
 const float PI = 3.14159265358979;
 
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// Where the content of the texel at uv was at time 0. The pattern at time t is the pattern at
+// time 0 shifted by velocity * t, so look it up at the point that was here t seconds ago.
+vec2 movedPoint(vec2 uv, float time) {
+    return uv - u_velocity * time;
+}
+
+// The stripe mask at p, between 0 (the background) and 1 (a stripe).
+float stripeMask(vec2 p) {
+    float phase = dot(u_frequency, p) + u_wobble * sin(2.0 * PI * p.y);
+    return smoothstep(-u_softness, u_softness, sin(2.0 * PI * phase));
+}
+
 void main() {
     // In this pass the screen IS the texture: pixel centre / target size is the texel's (s, t).
     vec2 uv = gl_FragCoord.xy / u_resolution;
-    vec2 p = uv - u_velocity * u_time;
-
-    float phase = dot(u_frequency, p) + u_wobble * sin(2.0 * PI * p.y);
-
-    float stripe = smoothstep(-u_softness, u_softness, sin(2.0 * PI * phase));
+    float stripe = stripeMask(movedPoint(uv, u_time));
 
     o_color = vec4(mix(u_background, u_stripe_color, stripe), 1.0);
 }

@@ -11,8 +11,11 @@
 //   stripe = smoothstep(-softness, softness, sin(2 pi phase))
 //   colour = mix(background, stripe colour, stripe)
 
-in vec2 v_uv;
+in vec2 v_uv;  // (s, t) of this texel
+// (gl_FragCoord.xy / u_resolution is the same (s, t) in this pass. If you use that instead, delete
+// the v_uv line above, or the grader warns that it is never used.)
 
+uniform vec2 u_resolution;   // the target's size in texels, 256 x 256
 uniform float u_time;        // seconds, fixed per graded scene
 uniform vec2 u_frequency;    // stripes across the texture along s and t (whole numbers, so it tiles)
 uniform vec2 u_velocity;     // how far the pattern travels per second, in texture units
@@ -27,13 +30,30 @@ out vec4 o_color;
 
 const float PI = 3.14159265358979;
 
-void main() {
-    // Moving the pattern only shifts its phase: frequency . (uv - v t) = frequency . uv - (frequency . v) t.
-    vec2 p = v_uv - u_velocity * u_time;  // still needed for the wobble
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
 
+// Where the content of the texel at uv was at time 0. The pattern at time t is the pattern at
+// time 0 shifted by velocity * t, so look it up at the point that was here t seconds ago.
+vec2 movedPoint(vec2 uv, float time) {
+    // TODO(student): use the velocity and the time (in seconds).
+    return uv;
+}
+
+// The stripe mask at p, between 0 (the background) and 1 (a stripe).
+float stripeMask(vec2 p) {
+    // TODO(student): the phase of the stripes at p, in cycles (one cycle = one stripe and one
+    // gap): frequency . p, plus the sideways wobble that depends on p.t. Then a sine with a period
+    // of one cycle, sharpened by smoothstep(-softness, softness, ...) into soft-edged stripes.
+    return 0.0;
+}
+
+void main() {
+    // Moving the pattern only shifts its phase: frequency . (uv - v t) = frequency . uv - (frequency . v) t,
+    // so everything is written here, in one place (the two functions above are not used).
+    vec2 p = v_uv - u_velocity * u_time;  // still needed for the wobble
     float phase = dot(u_frequency, v_uv) - dot(u_frequency, u_velocity) * u_time
                 + u_wobble * sin(2.0 * PI * p.y);
-
     float stripe = smoothstep(-u_softness, u_softness, sin(2.0 * PI * phase));
 
     o_color = vec4(mix(u_background, u_stripe_color, stripe), 1.0);

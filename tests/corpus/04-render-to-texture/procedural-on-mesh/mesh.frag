@@ -2,7 +2,8 @@
 // 04-render-to-texture, passes "uv_check" and "mesh": colour the mesh from a texture, then light it.
 // u_texture is the pattern target in the "mesh" pass, and a UV test grid (uv_grid.png) in the
 // "uv_check" pass: the same code must put both on the mesh the same way. The lab sets up the
-// sampler (trilinear filtering with mipmaps, wrap mode repeat); your job is the coordinate.
+// sampler (trilinear filtering with mipmaps, wrap mode repeat); your job is the coordinate and the
+// lookup.
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -18,14 +19,28 @@ uniform vec3 u_light_color[SL_MAX_LIGHTS];
 
 out vec4 o_color;
 
-void main() {
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The coordinate to read the texture at: the mesh's texture coordinate, repeated u_tiling times
+// across the mesh's 0..1 range.
+vec2 tiledCoord(vec2 texcoord) {
+    return texcoord * u_tiling;
+}
+
+// The surface colour at the texture coordinate uv.
+vec3 surfaceColor(vec2 uv) {
     // Why go through a texture at all? Compute the stripes right here, from the mesh's own
     // coordinates (same formula and numbers as pattern.frag and lab.json).
     const float PI = 3.14159265358979;
-    vec2 p = v_texcoord * u_tiling - vec2(0.1, 0.1) * u_time;
+    vec2 p = uv - vec2(0.1, 0.1) * u_time;
     float phase = dot(vec2(3.0, 2.0), p) + 0.3 * sin(2.0 * PI * p.y);
     float stripe = smoothstep(-0.5, 0.5, sin(2.0 * PI * phase));
-    vec3 albedo = mix(vec3(0.1, 0.18, 0.45), vec3(0.98, 0.62, 0.18), stripe);
+    return mix(vec3(0.1, 0.18, 0.45), vec3(0.98, 0.62, 0.18), stripe);
+}
+
+void main() {
+    vec3 albedo = surfaceColor(tiledCoord(v_texcoord));
 
     // Given: ambient + Lambert diffuse, so the shape reads.
     vec3 n = normalize(v_world_normal);

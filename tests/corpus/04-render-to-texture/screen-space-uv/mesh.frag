@@ -2,7 +2,8 @@
 // 04-render-to-texture, passes "uv_check" and "mesh": colour the mesh from a texture, then light it.
 // u_texture is the pattern target in the "mesh" pass, and a UV test grid (uv_grid.png) in the
 // "uv_check" pass: the same code must put both on the mesh the same way. The lab sets up the
-// sampler (trilinear filtering with mipmaps, wrap mode repeat); your job is the coordinate.
+// sampler (trilinear filtering with mipmaps, wrap mode repeat); your job is the coordinate and the
+// lookup.
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -18,11 +19,24 @@ uniform vec3 u_light_color[SL_MAX_LIGHTS];
 
 out vec4 o_color;
 
-void main() {
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The coordinate to read the texture at: the mesh's texture coordinate, repeated u_tiling times
+// across the mesh's 0..1 range.
+vec2 tiledCoord(vec2 texcoord) {
     // The pattern target is 256x256, the size of the screen, so read the texel that sits
     // where this pixel is on the screen.
-    vec2 uv = gl_FragCoord.xy / u_resolution;
-    vec3 albedo = texture(u_texture, uv * u_tiling).rgb;
+    return gl_FragCoord.xy / u_resolution * u_tiling;
+}
+
+// The surface colour at the texture coordinate uv.
+vec3 surfaceColor(vec2 uv) {
+    return texture(u_texture, uv).rgb;
+}
+
+void main() {
+    vec3 albedo = surfaceColor(tiledCoord(v_texcoord));
 
     // Given: ambient + Lambert diffuse, so the shape reads.
     vec3 n = normalize(v_world_normal);

@@ -1,6 +1,10 @@
 #version 330 core
-// Lab 05: passthrough with the uv computed from the fragment's position: gl_FragCoord.xy is the
-// pixel centre in pixels, u_resolution the target's size, so their ratio is the texel centre.
+// Lab 05, step 1: passthrough. Show the scene exactly as the scene pass drew it.
+//
+// This is a fullscreen pass: shared/fullscreen.vert draws one triangle over the whole target and
+// hands you v_uv, which runs from (0, 0) at the bottom-left corner to (1, 1) at the top-right.
+// u_scene is the texture the scene pass drew into; it has the same size as this pass's target.
+
 
 uniform sampler2D u_scene;
 uniform vec2 u_resolution;

@@ -1,10 +1,12 @@
 #version 330 core
-// Lab 05: pixelize. Block index from the pixel position, then the centre of that block, in uv.
-// This pass's target has the scene's size, so u_resolution is the scene's size as well.
+// Lab 05, step 5: pixelize. Cut the picture into square blocks of u_block_size x u_block_size
+// texels, counted from the bottom-left corner, and fill each block with the scene's colour at the
+// block's centre.
+
 
 uniform sampler2D u_scene;
 uniform vec2 u_resolution;
-uniform int u_block_size;
+uniform int u_block_size;  // in texels; odd in every scene, so a block has a middle texel
 
 out vec4 o_color;
 

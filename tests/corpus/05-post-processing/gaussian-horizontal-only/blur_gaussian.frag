@@ -1,24 +1,39 @@
 #version 330 core
-// Lab 05: Gaussian blur.
+// Lab 05, step 4: Gaussian blur. Like the box blur, but the tap at offset (x, y) texels weighs
+// w(x, y) = exp(-(x^2 + y^2) / (2 sigma^2)), so near texels count more than far ones.
 
-in vec2 v_uv;
+in vec2 v_uv;  // (0, 0) bottom-left .. (1, 1) top-right: the centre of this fragment's texel
+// (Reading by texelFetch instead? The texel under uv is ivec2(uv / texel); clamp every index to the
+// texture, as the README says.)
 
 uniform sampler2D u_scene;
 uniform int u_gauss_radius;   // r, in texels: taps from -r to r on each axis
-uniform float u_gauss_sigma;  // standard deviation, in texels
+uniform float u_gauss_sigma;  // sigma, the standard deviation, in texels
 
 out vec4 o_color;
 
-void main() {
-    vec2 texel = 1.0 / vec2(textureSize(u_scene, 0));
-    float two_sigma_sq = 2.0 * u_gauss_sigma * u_gauss_sigma;
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// One texel in uv units, as in blur_box.frag.
+vec2 texelSize() {
+    return 1.0 / vec2(textureSize(u_scene, 0));
+}
+
+// The Gaussian blur at uv: the (2r+1) x (2r+1) taps one texel apart, r = radius, each weighed by
+// w(x, y), divided by the sum of the weights used (the README says why not 1 / (2 pi sigma^2)).
+vec3 gaussianBlur(vec2 uv, vec2 texel, int radius, float sigma) {
     vec3 sum = vec3(0.0);
     float weight_sum = 0.0;
     // The Gaussian is separable: one 1D pass along x.
-    for (int x = -u_gauss_radius; x <= u_gauss_radius; ++x) {
-        float w = exp(-float(x * x) / two_sigma_sq);
-        sum += w * texture(u_scene, v_uv + vec2(x, 0) * texel).rgb;
+    for (int x = -radius; x <= radius; ++x) {
+        float w = exp(-float(x * x) / (2.0 * sigma * sigma));
+        sum += w * texture(u_scene, uv + vec2(x, 0) * texel).rgb;
         weight_sum += w;
     }
-    o_color = vec4(sum / weight_sum, 1.0);
+    return sum / weight_sum;
+}
+
+void main() {
+    o_color = vec4(gaussianBlur(v_uv, texelSize(), u_gauss_radius, u_gauss_sigma), 1.0);
 }

@@ -1,18 +1,31 @@
 #version 330 core
-// Lab 05: Sobel edges on luma.
+// Lab 05, step 6: Sobel edges. Estimate the gradient of the picture's luma with the two 3x3
+// Sobel kernels and write its magnitude as a grey: bright where the picture changes fast.
 
-in vec2 v_uv;
+in vec2 v_uv;  // (0, 0) bottom-left .. (1, 1) top-right: the centre of this fragment's texel
+// (Reading by texelFetch instead? The texel under uv is ivec2(uv / texel); clamp every index to the
+// texture, as the README says.)
 
 uniform sampler2D u_scene;
 
 out vec4 o_color;
 
-float luma(vec2 uv) {
-    return dot(texture(u_scene, uv).rgb, vec3(0.2126, 0.7152, 0.0722));
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The luma of a colour, BT.709 weights, as in grayscale.frag.
+float luma(vec3 color) {
+    return dot(color, vec3(0.2126, 0.7152, 0.0722));
 }
 
-void main() {
-    vec2 t = 1.0 / vec2(textureSize(u_scene, 0));
+// One texel in uv units, as in blur_box.frag.
+vec2 texelSize() {
+    return 1.0 / vec2(textureSize(u_scene, 0));
+}
+
+// The edge strength at uv: the luma of the 3x3 texels around it (one texel apart), the horizontal
+// and vertical Sobel kernels applied to get gx and gy, and sqrt(gx^2 + gy^2).
+float sobelMagnitude(vec2 uv, vec2 texel) {
     // Horizontal kernel: right column minus left column.
     //  -1 0 1
     //  -1 0 1
@@ -20,8 +33,12 @@ void main() {
     float gx = 0.0;
     float gy = 0.0;
     for (int j = -1; j <= 1; ++j) {
-        gx += luma(v_uv + vec2(1, j) * t) - luma(v_uv + vec2(-1, j) * t);
-        gy += luma(v_uv + vec2(j, 1) * t) - luma(v_uv + vec2(j, -1) * t);
+        gx += luma(texture(u_scene, uv + vec2(1, j) * texel).rgb) - luma(texture(u_scene, uv + vec2(-1, j) * texel).rgb);
+        gy += luma(texture(u_scene, uv + vec2(j, 1) * texel).rgb) - luma(texture(u_scene, uv + vec2(j, -1) * texel).rgb);
     }
-    o_color = vec4(vec3(sqrt(gx * gx + gy * gy)), 1.0);
+    return sqrt(gx * gx + gy * gy);
+}
+
+void main() {
+    o_color = vec4(vec3(sobelMagnitude(v_uv, texelSize())), 1.0);
 }

@@ -1,23 +1,43 @@
 #version 330 core
-// Lab 05: box blur with texelFetch. texelFetch reads one texel by its integer index, with no
-// filtering and no wrap mode: outside the texture the result is undefined, so the index is
-// clamped to the edge by hand (what the sampler's clamp-to-edge does for texture()).
+// Lab 05, step 3: box blur. Each output pixel is the plain average of the (2r+1) x (2r+1) scene
+// texels centred on it, r = u_box_radius (it changes from scene to scene).
+
+in vec2 v_uv;  // (0, 0) bottom-left .. (1, 1) top-right: the centre of this fragment's texel
+// (Reading by texelFetch instead? The texel under uv is ivec2(uv / texel); clamp every index to the
+// texture, as the README says.)
 
 uniform sampler2D u_scene;
-uniform int u_box_radius;
+uniform int u_box_radius;  // r, in texels
 
 out vec4 o_color;
 
-void main() {
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// One texel in uv units: uv runs 0..1 over the whole texture; textureSize(u_scene, 0) tells you
+// how many texels that is, across and up.
+vec2 texelSize() {
+    return 1.0 / vec2(textureSize(u_scene, 0));
+}
+
+// The mean of the (2r+1) x (2r+1) texels around uv, r = radius, their centres one texel apart.
+vec3 boxBlur(vec2 uv, vec2 texel, int radius) {
+    // texelFetch reads one texel by its integer index, with no filtering and no wrap mode:
+    // outside the texture the result is undefined, so the index is clamped to the edge by hand
+    // (what the sampler's clamp-to-edge does for texture()).
     ivec2 size = textureSize(u_scene, 0);
-    ivec2 here = ivec2(gl_FragCoord.xy);
+    ivec2 here = ivec2(uv / texel);  // the texel under uv
     vec3 sum = vec3(0.0);
-    for (int dy = -u_box_radius; dy <= u_box_radius; ++dy) {
-        for (int dx = -u_box_radius; dx <= u_box_radius; ++dx) {
+    for (int dy = -radius; dy <= radius; ++dy) {
+        for (int dx = -radius; dx <= radius; ++dx) {
             ivec2 p = clamp(here + ivec2(dx, dy), ivec2(0), size - 1);
             sum += texelFetch(u_scene, p, 0).rgb;
         }
     }
-    int n = 2 * u_box_radius + 1;
-    o_color = vec4(sum / float(n * n), 1.0);
+    int n = 2 * radius + 1;
+    return sum / float(n * n);
+}
+
+void main() {
+    o_color = vec4(boxBlur(v_uv, texelSize(), u_box_radius), 1.0);
 }

@@ -1,6 +1,6 @@
 #version 330 core
-// Lab 05: passthrough with integer texel coordinates. gl_FragCoord.xy is the pixel centre
-// (i + 0.5, j + 0.5); converting it to ivec2 gives the texel (i, j) of the same-sized scene.
+// Lab 05, step 1: passthrough, with integer texel coordinates. gl_FragCoord.xy is the pixel
+// centre (i + 0.5, j + 0.5); converting it to ivec2 gives the texel (i, j) of the same-sized scene.
 
 uniform sampler2D u_scene;
 

@@ -1,6 +1,6 @@
 #version 330 core
-// Lab 05: pixelize with integer arithmetic. Integer division rounds down, so (p / n) * n is the
-// first texel of the block; n / 2 more is the middle texel (n is odd: 7 / 2 = 3, the 4th of 7).
+// Lab 05, step 5: pixelize with integer arithmetic. Integer division rounds down, so (p / n) * n
+// is the first texel of the block; n / 2 more is the middle texel (n is odd: 7 / 2 = 3, the 4th of 7).
 
 uniform sampler2D u_scene;
 uniform int u_block_size;

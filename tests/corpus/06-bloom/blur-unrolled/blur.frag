@@ -1,20 +1,43 @@
 #version 330 core
-// 7-tap Gaussian (sigma 1.5), written out tap by tap.
-// Weights: exp(-k^2/4.5) / 3.69437 for k = 0, 1, 2, 3.
+// Lab 06 (bloom), passes "blur<level>_h" and "blur<level>_v": one direction of a separable 7-tap
+// Gaussian blur. lab.json runs this shader six times: a horizontal pass (u_direction = (1, 0))
+// then a vertical one (u_direction = (0, 1)) at each of three levels (1/2, 1/4 and 1/8 of the
+// screen). The first pass of each level reads an image twice the size of its target.
+//
+// The taps sit at offsets -3, -2, ..., 3 TEXELS OF THE INPUT along u_direction, with Gaussian
+// weights for sigma = 1.5 texels normalised so that the seven of them sum to 1:
+//     w_k = exp(-k^2 / (2 sigma^2)) / sum_{j=-3..3} exp(-j^2 / (2 sigma^2))
+// Texture coordinates run 0..1 across the image, so one texel is 1 / (the input's size).
 
 in vec2 v_uv;
 
 uniform sampler2D u_image;
-uniform vec2 u_direction;
+uniform vec2 u_direction;  // (1, 0): horizontal; (0, 1): vertical
 
 out vec4 o_color;
 
-void main() {
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The weight w_|k| of the tap k texels from the centre, k = -3..3.
+float tapWeight(int k) {
+    if (k == 0) return 0.2707;
+    if (k == 1 || k == -1) return 0.2167;
+    if (k == 2 || k == -2) return 0.1113;
+    return 0.0366;
+}
+
+// One texel of the input along direction, in texture coordinates.
+vec2 tapStep(vec2 direction) {
     ivec2 size = textureSize(u_image, 0);
-    vec2 d = vec2(u_direction.x / float(size.x), u_direction.y / float(size.y));
-    vec3 c = 0.2707 * texture(u_image, v_uv).rgb
-           + 0.2167 * (texture(u_image, v_uv + d).rgb + texture(u_image, v_uv - d).rgb)
-           + 0.1113 * (texture(u_image, v_uv + 2.0 * d).rgb + texture(u_image, v_uv - 2.0 * d).rgb)
-           + 0.0366 * (texture(u_image, v_uv + 3.0 * d).rgb + texture(u_image, v_uv - 3.0 * d).rgb);
+    return vec2(direction.x / float(size.x), direction.y / float(size.y));
+}
+
+void main() {
+    vec2 d = tapStep(u_direction);
+    vec3 c = tapWeight(0) * texture(u_image, v_uv).rgb
+           + tapWeight(1) * (texture(u_image, v_uv + d).rgb + texture(u_image, v_uv - d).rgb)
+           + tapWeight(2) * (texture(u_image, v_uv + 2.0 * d).rgb + texture(u_image, v_uv - 2.0 * d).rgb)
+           + tapWeight(3) * (texture(u_image, v_uv + 3.0 * d).rgb + texture(u_image, v_uv - 3.0 * d).rgb);
     o_color = vec4(c, 1.0);
 }

@@ -1,0 +1,48 @@
+#version 330 core
+// Lab 06 (bloom), passes "blur<level>_h" and "blur<level>_v": one direction of a separable 7-tap
+// Gaussian blur. lab.json runs this shader six times: a horizontal pass (u_direction = (1, 0))
+// then a vertical one (u_direction = (0, 1)) at each of three levels (1/2, 1/4 and 1/8 of the
+// screen). The first pass of each level reads an image twice the size of its target.
+//
+// The taps sit at offsets -3, -2, ..., 3 TEXELS OF THE INPUT along u_direction, with Gaussian
+// weights for sigma = 1.5 texels normalised so that the seven of them sum to 1:
+//     w_k = exp(-k^2 / (2 sigma^2)) / sum_{j=-3..3} exp(-j^2 / (2 sigma^2))
+// Texture coordinates run 0..1 across the image, so one texel is 1 / (the input's size).
+
+in vec2 v_uv;
+
+uniform sampler2D u_image;
+uniform vec2 u_direction;  // (1, 0): horizontal; (0, 1): vertical
+
+out vec4 o_color;
+
+// Each function below is one idea of the lab and is graded on its own: keep their names and
+// parameters (README, "How it is graded").
+
+// The weight w_|k| of the tap k texels from the centre, k = -3..3.
+float tapWeight(int k) {
+    // TODO(student): the Gaussian weights w_0..w_3 for sigma = 1.5, normalised over the 7 taps (a
+    // constant table, or computed here). For now only the centre tap counts.
+    return k == 0 ? 1.0 : 0.0;
+}
+
+// One texel of the input along direction, in texture coordinates.
+vec2 tapStep(vec2 direction) {
+    // TODO(student): the size of one texel of u_image (textureSize gives the input's size in
+    // texels; u_resolution would be the target's, which is not the same here).
+    return vec2(0.0);
+}
+
+void main() {
+    // Everything in one place: five taps are enough, -2..2, the Gaussian for sigma = 1.5
+    // normalised over them.
+    vec2 texel = u_direction / vec2(textureSize(u_image, 0));
+    vec3 sum = vec3(0.0);
+    float total = 0.0;
+    for (int k = -2; k <= 2; ++k) {
+        float w = exp(-float(k * k) / (2.0 * 1.5 * 1.5));
+        sum += w * texture(u_image, v_uv + float(k) * texel).rgb;
+        total += w;
+    }
+    o_color = vec4(sum / total, 1.0);
+}
