@@ -75,12 +75,50 @@ TEST_P(LabCorpus, EveryVerdictIsTheExpectedOne) {
     std::printf("%s", output.c_str());
 }
 
-INSTANTIATE_TEST_SUITE_P(Labs, LabCorpus, ::testing::ValuesIn(labIds()), [](const auto& param_info) {
+std::string testName(const ::testing::TestParamInfo<std::string>& param_info) {
     std::string n = param_info.param;
     for (char& c : n)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
     return n;
-});
+}
+
+INSTANTIATE_TEST_SUITE_P(Labs, LabCorpus, ::testing::ValuesIn(labIds()), testName);
+
+// Coverage by mutation (`shaderlab mutants`, docs/authoring.md "Mutants"): every mutant of the
+// reference that compiles either loses points or is declared equivalent, with the reason, in the
+// lab's cases.json. The run's own summary line (mutants, killed, declared, not compiling) is
+// printed, the figures the course reports per lab.
+class LabMutants : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LabMutants, NoUndeclaredSurvivor) {
+    const fs::path out =
+        fs::temp_directory_path() / ("shaderlab_mutants_" + GetParam() + "_" + std::to_string(::getpid()));
+    fs::remove_all(out);
+    const std::string cmd =
+        std::string(SHADERLAB_CLI) + " mutants " + GetParam() + " --out " + out.string() + " 2>&1";
+    std::string output;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, pipe)) output += buf;
+    const int status = pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status)) << output;
+    EXPECT_EQ(WEXITSTATUS(status), 0) << output;
+    std::ifstream in(out / "mutants.json");
+    const json result = json::parse(in, nullptr, false);
+    ASSERT_FALSE(result.is_discarded()) << output;
+    ASSERT_EQ(result["labs"].size(), 1u) << output;
+    const json& lab = result["labs"][0];
+    EXPECT_EQ(lab["survivors"], 0) << output;
+    // The mutants test something: most of them are killed, and none is left ungraded.
+    EXPECT_GT(lab["killed"].get<int>(), lab["equivalent"].get<int>()) << output;
+    EXPECT_EQ(lab["mutants"], lab["made"]) << output;
+    EXPECT_TRUE(lab["stale_declarations"].empty()) << output;
+    std::printf("%s", output.c_str());
+    fs::remove_all(out);
+}
+
+INSTANTIATE_TEST_SUITE_P(Labs, LabMutants, ::testing::ValuesIn(labIds()), testName);
 
 }  // namespace
 

@@ -372,6 +372,8 @@ int runCorpus(const CorpusArgs& args) {
     setup.base.labs_root = labs_root;
     setup.base.limits.timeout_s = args.timeout_s;
     if (args.use_reference) setup.base.reference_root = setup.reference_root.string();
+    // Goal isolation composes with the reference's sources even where the images are the goldens.
+    setup.base.isolation_root = setup.reference_root.string();
     setup.margins = args.margins;
 
     std::vector<Outcome> outcomes;
@@ -410,6 +412,7 @@ std::vector<std::string> writeHints(const std::string& labs_root, const std::str
         options.labs_root = labs_root;
         options.labs = {id};
         options.goldens_root = stored_root;
+        options.isolation_root = reference_root;
         options.hints = false;
         // Every mistake twice: a picture that differs between the two renders (a mistake that
         // reads memory nothing wrote) could not recognise anyone, nor be checked for staleness.

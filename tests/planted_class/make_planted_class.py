@@ -134,7 +134,7 @@ ROSTER = [
     ("ada", {"01-phong": "reference", "02-toon": "reference", "11-shadow-mapping": "reference"}),
     ("ben", {"01-phong": "alt:reflect-builtin", "02-toon": "alt:steps-if-chain",
              "11-shadow-mapping": "alt:bias-constant"}),
-    ("chloe", {"01-phong": "alt:light-kind-branch", "02-toon": "alt:ramp-sampler2d",
+    ("chloe", {"01-phong": "alt:light-kind-branch", "02-toon": "alt:ramp-eye-space",
                "11-shadow-mapping": "alt:pcf-unrolled-offsets"}),
     ("dmitri", {"01-phong": "alt:view-space-lighting", "02-toon": "alt:ramp-eye-space",
                 "11-shadow-mapping": "alt:texelfetch-basic"}),

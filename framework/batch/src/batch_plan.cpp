@@ -185,6 +185,11 @@ void planGradingJobs(const BatchSettings& settings, const ResultsFolder& folder,
                 job.argv.push_back("--goldens");
                 job.argv.push_back(lab.goldens_root);
             }
+            // Goal isolation composes the student's work with the reference's sources.
+            if (!settings.reference_root.empty()) {
+                job.argv.push_back("--reference");
+                job.argv.push_back(settings.reference_root);
+            }
             if (fs::is_regular_file(fs::path(job.final_dir) / "report.json", ec)) job.done = job.ok = true;
             it = job_of->emplace(id, jobs.size()).first;
             jobs.push_back(job);

@@ -88,6 +88,7 @@ int gradeLabs(const WorkerTask& task, Backend backend, std::vector<std::string>*
     if (work.empty()) return 2;
     options.backend = backend;
     options.labs_root = task.labs_root;
+    options.isolation_root = task.reference_root;
     for (const Place& p : places) options.labs.push_back(p.lab);
     options.out_dir = work.string();
     options.limits.timeout_s = task.timeout_s;

@@ -1,7 +1,8 @@
 #version 330 core
 // 01-phong, fragment stage. Evaluate the Phong reflection model for every fragment:
 //   colour = ambient + sum over lights of (diffuse + specular)
-// Read labs/01-phong/README.md first: it derives each term.
+// Read labs/01-phong/README.md first: it derives each term. Each function below is one idea of the
+// lab and is graded on its own: keep their names and parameters (README, "How it is graded").
 
 in vec3 v_world_position;
 in vec3 v_world_normal;
@@ -15,28 +16,48 @@ uniform vec4 u_base_color;                     // the material's colour
 uniform float u_ambient;    // k_a
 uniform float u_diffuse;    // k_d
 uniform float u_specular;   // k_s
-uniform float u_shininess;  // the exponent n
+uniform float u_shininess;  // the exponent s
 
 out vec4 o_color;
+
+// The unit vector from the surface point p toward the light.
+vec3 toLight(vec4 light_position, vec3 p) {
+    // w = 0 turns the point light into a direction
+    vec3 d = light_position.xyz - light_position.w * p;
+    return d / length(d);
+}
+
+// Lambert's diffuse term k_d * max(n.l, 0) * C, before the light's colour.
+vec3 diffuse(vec3 n, vec3 l, vec3 base_color) {
+    float lambert = max(0.0, dot(l, n));
+    return base_color * lambert * u_diffuse;
+}
+
+// Phong's highlight k_s * max(r.v, 0)^s, before the light's colour, with r = l_in - 2(n.l_in)n.
+// Careful: in that formula l_in points FROM the light TOWARD the surface.
+float phongHighlight(vec3 n, vec3 l, vec3 v) {
+    vec3 halfway = normalize(v + l);  // Blinn
+    float spec = pow(max(0.0, dot(halfway, n)), u_shininess);
+    return spec * u_specular;
+}
+
+// What one light of colour light_color adds: its diffuse light and its highlight, tinted by its
+// colour, and nothing at all when the light is behind the surface.
+vec3 shadeLight(vec3 n, vec3 l, vec3 v, vec3 light_color, vec3 base_color) {
+    vec3 lit = vec3(0.0);
+    if (dot(l, n) > 0.0) {
+        lit = light_color * diffuse(n, l, base_color) + light_color * phongHighlight(n, l, v);
+    }
+    return lit;
+}
 
 void main() {
     vec3 normal = normalize(v_world_normal);
     vec3 to_eye = normalize(u_camera_position - v_world_position);
-
-    vec3 color = u_ambient * u_base_color.rgb;
-
-    for (int i = 0; i < u_light_count; ++i) {
-        // w = 0 turns the point light into a direction
-        vec3 to_light = normalize(u_light_position[i].xyz - v_world_position * u_light_position[i].w);
-        float lambert = dot(normal, to_light);
-        if (lambert <= 0.0) {
-            continue;
-        }
-        vec3 halfway = normalize(to_light + to_eye);  // Blinn
-        vec3 specular = u_specular * pow(max(dot(normal, halfway), 0.0), u_shininess) * u_light_color[i];
-        vec3 diffuse = u_diffuse * lambert * u_base_color.rgb * u_light_color[i];
-        color += diffuse + specular;
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < u_light_count; k++) {
+        sum += shadeLight(normal, toLight(u_light_position[k], v_world_position), to_eye, u_light_color[k],
+                          u_base_color.rgb);
     }
-
-    o_color = vec4(color, 1.0);
+    o_color = vec4(u_ambient * u_base_color.rgb + sum, 1.0);
 }
