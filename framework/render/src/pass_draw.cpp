@@ -47,34 +47,40 @@ std::string glErrorName(GLenum e) {
 
 }  // namespace
 
-// The counters guarded programs write when a loop runs past kLoopGuardLimit (shader_program.h).
+// The counters guarded programs write when a loop runs past kLoopGuardLimit, and where
+// (shader_program.h).
 void LabRunner::createLoopGuard() {
     if (!GLAD_GL_VERSION_4_3) return;
-    const GLuint zero[2] = {0, 0};
+    const GLuint zero[kLoopGuardWords] = {};
     glGenBuffers(1, &loop_guard_);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard_);
     glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, zero, GL_DYNAMIC_READ);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLoopGuardBinding, loop_guard_);
 }
 
-// After a pass: did a loop of its program run past the guard? Then the render stops here.
+// After a pass: did a loop of its program run past the guard? Then the render stops here, with
+// the loop's line when the guard recorded it.
 bool LabRunner::checkLoopGuard(const PassSpec& pass, const std::string& scene) {
     if (!loop_guard_) return true;
-    GLuint counts[2] = {0, 0};
+    GLuint counts[kLoopGuardWords] = {};
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard_);
     glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counts, counts);
     if (counts[0] == 0 && counts[1] == 0) return true;
     const bool vertex = counts[0] > 0;
-    const std::string& file = vertex ? pass.program.vertex : pass.program.fragment;
+    const LoopSite site = programOf(pass).loopSite(vertex ? 0 : 1, counts[vertex ? 2 : 3]);
+    const std::string& file =
+        site.file.empty() ? (vertex ? pass.program.vertex : pass.program.fragment) : site.file;
+    const std::string which = site.line > 0 ? "the loop at line " + std::to_string(site.line) : "a loop";
     const std::string message =
-        "endless loop: in pass '" + pass.name + "' of scene '" + scene + "', a loop ran more than " +
+        "endless loop: in pass '" + pass.name + "' of scene '" + scene + "', " + which + " ran more than " +
         std::to_string(kLoopGuardLimit) + " times for one " + (vertex ? "vertex" : "pixel") + " (" +
         std::to_string(vertex ? counts[0] : counts[1]) + (vertex ? " vertices" : " pixels") +
         "); the grader stops it there, as a GPU would hang on it. Check that every loop's condition "
         "becomes false: its counter must change, and towards the end";
     out_.endless_loop = true;
-    out_.diagnostics.push_back({file, 0, 0, "error", message});
-    return fail(RenderStatus::RenderError, file + ": " + message);
+    out_.diagnostics.push_back({file, site.line, site.column, "error", message, "", site.source_line});
+    return fail(RenderStatus::RenderError,
+                file + (site.line > 0 ? ":" + std::to_string(site.line) : "") + ": " + message);
 }
 
 bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, SceneContext& ctx) {

@@ -239,19 +239,56 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
 
 std::string loopGuardPrelude(int stage) {
     const std::string limit = std::to_string(kLoopGuardLimit);
+    const std::string k = std::to_string(stage == 0 ? 0 : 1);
+    // The macro takes the place of the call guardLoops() writes: __LINE__ and __FILE__ are those
+    // of the loop's condition, numbered as the driver's log numbers them.
     return "#extension GL_ARB_shader_storage_buffer_object : require\n"
-           "layout(std430) buffer ShaderlabLoopGuard { uint shaderlab_loop_overruns[2]; };\n"
+           "layout(std430) buffer ShaderlabLoopGuard { uint shaderlab_loop_overruns[2]; "
+           "uint shaderlab_loop_first[2]; };\n"
            "int shaderlab_loop_ticks = 0;\n"
-           "bool shaderlab_loop_tick() {\n"
+           "bool shaderlab_loop_tick_at(int line, int file) {\n"
            "    shaderlab_loop_ticks += 1;\n"
            "    if (shaderlab_loop_ticks <= " +
            limit +
            ") return true;\n"
            "    if (shaderlab_loop_ticks == " +
-           limit + " + 1) atomicAdd(shaderlab_loop_overruns[" + std::to_string(stage == 0 ? 0 : 1) +
+           limit + " + 1) {\n        atomicAdd(shaderlab_loop_overruns[" + k +
            "], 1u);\n"
+           "        atomicCompSwap(shaderlab_loop_first[" +
+           k +
+           "], 0u, uint(max(line, 1)) * 256u + uint(clamp(file, 0, 255)));\n"
+           "    }\n"
            "    return false;\n"
-           "}\n";
+           "}\n"
+           "#define shaderlab_loop_tick() shaderlab_loop_tick_at(__LINE__, __FILE__)\n";
+}
+
+LoopSite ShaderProgram::loopSite(int stage, unsigned packed) const {
+    LoopSite site;
+    const int k = stage == 0 ? 0 : 1;
+    const std::size_t file = packed % 256;
+    const int line = static_cast<int>(packed / 256);
+    if (packed == 0 || file >= stage_files_[k].size() || file >= stage_texts_[k].size()) return site;
+    const std::vector<std::string> lines = splitLines(stage_texts_[k][file]);
+    if (line < 1 || static_cast<std::size_t>(line) > lines.size()) return site;
+    site.file = stage_files_[k][file];
+    site.line = line;
+    site.source_line = lines[static_cast<std::size_t>(line - 1)];
+    // The column of the loop's keyword, when the line has exactly one.
+    const std::string& text = site.source_line;
+    int found = 0;
+    for (std::size_t p = 0; p < text.size(); ++p) {
+        if (p > 0 && (std::isalnum(static_cast<unsigned char>(text[p - 1])) || text[p - 1] == '_')) continue;
+        for (const char* word : {"for", "while"}) {
+            const std::size_t n = std::strlen(word);
+            if (text.compare(p, n, word) != 0) continue;
+            const char after = p + n < text.size() ? text[p + n] : ' ';
+            if (std::isalnum(static_cast<unsigned char>(after)) || after == '_') continue;
+            site.column = found++ == 0 ? static_cast<int>(p) + 1 : 0;
+        }
+    }
+    if (found > 1) site.column = 0;
+    return site;
 }
 
 namespace {
@@ -434,8 +471,11 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
         uniform_index_ = std::move(other.uniform_index_);
         uniform_list_ = std::move(other.uniform_list_);
         outputs_ = std::move(other.outputs_);
-        prepared_[0] = std::move(other.prepared_[0]);
-        prepared_[1] = std::move(other.prepared_[1]);
+        for (int k = 0; k < 2; ++k) {
+            prepared_[k] = std::move(other.prepared_[k]);
+            stage_files_[k] = std::move(other.stage_files_[k]);
+            stage_texts_[k] = std::move(other.stage_texts_[k]);
+        }
         defaults_ = std::move(other.defaults_);
     }
     return *this;
@@ -670,6 +710,8 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
     stage[1] = compileStage(GL_FRAGMENT_SHADER, fragment);
     for (int k = 0; k < 2; ++k) {
         prepared_[k] = stage[k].prepared;
+        stage_files_[k] = stage[k].text.files;
+        stage_texts_[k] = stage[k].text.texts;
         stages_.push_back(stage[k].log);
     }
     const GLuint vs = stage[0].shader;

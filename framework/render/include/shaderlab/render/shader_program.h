@@ -53,18 +53,32 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& 
 // way a shader that never terminates on a GPU could pass. A guarded program counts, per shader
 // invocation, the iterations of all its loops (a call in every `for` and `while` condition);
 // past kLoopGuardLimit every loop ends at once and the invocation adds 1 to its stage's counter
-// in a storage buffer at binding kLoopGuardBinding (uint[2]: vertex, fragment), which the
-// renderer reads after each pass. The limit sits below llvmpipe's own so that it is always met
-// first; the labs' loops stay far below it (the irradiance convolution of lab 07, the largest,
-// runs 6 x 16 x 16 + 6 x 16 + 6 = 1,638).
+// in a storage buffer at binding kLoopGuardBinding, which the renderer reads after each pass. The
+// buffer is kLoopGuardWords uints: the counters (vertex, fragment), then for each stage where the
+// first invocation to run past the limit was: the line and source-string number of the loop it
+// was in, packed by the preprocessor's __LINE__ and __FILE__ (which the `#line` directives make
+// the student's own) as line * 256 + file (0: none). loopSite() reads that back. The limit sits
+// below llvmpipe's own so that it is always met first; the labs' loops stay far below it (the
+// irradiance convolution of lab 07, the largest, runs 6 x 16 x 16 + 6 x 16 + 6 = 1,638).
 constexpr int kLoopGuardLimit = 60000;
 constexpr unsigned kLoopGuardBinding = 7;
+constexpr int kLoopGuardWords = 4;
 // `prepared` (a prepareSource() text) with a guard call in the condition of every `for` and
 // `while` (`do ... while` included) outside comments: `while (c)` becomes
 // `while (shaderlab_loop_tick() && (c))`. Lines and the text outside the conditions are kept.
 std::string guardLoops(const std::string& prepared);
 // The declarations a guarded stage needs (stage 0: vertex, 1: fragment), for the prelude.
 std::string loopGuardPrelude(int stage);
+
+// The loop the guard stopped, in the student's files: the file as the diagnostics name it, the
+// 1-based line and the column of its `for`/`while`/`do` (0 when the line holds none or several),
+// and the line's text. `file` is empty when the place is unknown.
+struct LoopSite {
+    std::string file;
+    int line = 0;
+    int column = 0;
+    std::string source_line;
+};
 
 struct StageLog {
     std::string file;
@@ -114,6 +128,9 @@ class ShaderProgram {
                const std::string& fragment_file, const std::string& fragment_text);
 
     bool loopGuarded() const { return loop_guarded_; }
+    // Where a guarded stage's loop ran past the limit (stage 0: vertex, 1: fragment), from the
+    // value the guard stored for it (kLoopGuardWords); an empty site for 0 or a place it cannot hold.
+    LoopSite loopSite(int stage, unsigned packed) const;
     bool compiled() const { return compiled_; }
     bool linked() const { return linked_; }
     unsigned id() const { return program_; }
@@ -147,6 +164,8 @@ class ShaderProgram {
     std::vector<UniformSlot> uniform_list_;
     std::vector<FragmentOutput> outputs_;
     std::string prepared_[2];
+    // Each stage's files by source-string number and their text, for loopSite().
+    std::vector<std::string> stage_files_[2], stage_texts_[2];
     struct Default {
         int location;
         unsigned type;
