@@ -240,8 +240,9 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
 std::string loopGuardPrelude(int stage) {
     const std::string limit = std::to_string(kLoopGuardLimit);
     const std::string k = std::to_string(stage == 0 ? 0 : 1);
-    // The macro takes the place of the call guardLoops() writes: __LINE__ and __FILE__ are those
-    // of the loop's condition, numbered as the driver's log numbers them.
+    // The macro takes the place of the call guardLoops() writes: __LINE__ is the loop condition's,
+    // numbered as the driver's log numbers it, and shaderlab_loop_file its source string's
+    // (guardLoops sets it at every `#line`).
     return "#extension GL_ARB_shader_storage_buffer_object : require\n"
            "layout(std430) buffer ShaderlabLoopGuard { uint shaderlab_loop_overruns[2]; "
            "uint shaderlab_loop_first[2]; };\n"
@@ -260,7 +261,8 @@ std::string loopGuardPrelude(int stage) {
            "    }\n"
            "    return false;\n"
            "}\n"
-           "#define shaderlab_loop_tick() shaderlab_loop_tick_at(__LINE__, __FILE__)\n";
+           "#define shaderlab_loop_file 0\n"
+           "#define shaderlab_loop_tick() shaderlab_loop_tick_at(__LINE__, shaderlab_loop_file)\n";
 }
 
 LoopSite ShaderProgram::loopSite(int stage, unsigned packed) const {
@@ -332,6 +334,29 @@ std::size_t findAtDepth(const std::string& t, std::size_t p, char stop) {
     return std::string::npos;
 }
 
+// Mesa's preprocessor gives __FILE__ as 0 inside a macro's expansion whatever `#line` said, so
+// the guard's file number comes from a macro of its own, set again before every `#line N F`
+// (a directive's own line number is reset by the `#line` after it: numbering is unchanged).
+std::string nameLoopFiles(const std::string& text) {
+    static const std::regex line_directive(R"(^[ \t]*#[ \t]*line[ \t]+\d+[ \t]+(\d{1,3})[ \t]*$)");
+    if (text.find("line") == std::string::npos) return text;
+    std::string out;
+    out.reserve(text.size() + 1024);
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string line = text.substr(start, end - start);
+        std::smatch m;
+        if (line.find("line") != std::string::npos && std::regex_match(line, m, line_directive))
+            out += "#undef shaderlab_loop_file\n#define shaderlab_loop_file " + m[1].str() + "\n";
+        out.append(text, start, end - start);
+        if (end < text.size()) out += '\n';
+        start = end + 1;
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string guardLoops(const std::string& prepared) {
@@ -379,7 +404,7 @@ std::string guardLoops(const std::string& prepared) {
         copied = p = cond_end;
     }
     out.append(prepared, copied, std::string::npos);
-    return out;
+    return nameLoopFiles(out);
 }
 
 std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<std::string>& files) {

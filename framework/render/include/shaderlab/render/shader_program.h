@@ -56,16 +56,17 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& 
 // in a storage buffer at binding kLoopGuardBinding, which the renderer reads after each pass. The
 // buffer is kLoopGuardWords uints: the counters (vertex, fragment), then for each stage where the
 // first invocation to run past the limit was: the line and source-string number of the loop it
-// was in, packed by the preprocessor's __LINE__ and __FILE__ (which the `#line` directives make
-// the student's own) as line * 256 + file (0: none). loopSite() reads that back. The limit sits
-// below llvmpipe's own so that it is always met first; the labs' loops stay far below it (the
+// was in (the preprocessor's __LINE__, which the `#line` directives make the student's own, and
+// the number of the last `#line`), packed as line * 256 + file (0: none). loopSite() reads that back. The
+// limit sits below llvmpipe's own so that it is always met first; the labs' loops stay far below it (the
 // irradiance convolution of lab 07, the largest, runs 6 x 16 x 16 + 6 x 16 + 6 = 1,638).
 constexpr int kLoopGuardLimit = 60000;
 constexpr unsigned kLoopGuardBinding = 7;
 constexpr int kLoopGuardWords = 4;
 // `prepared` (a prepareSource() text) with a guard call in the condition of every `for` and
 // `while` (`do ... while` included) outside comments: `while (c)` becomes
-// `while (shaderlab_loop_tick() && (c))`. Lines and the text outside the conditions are kept.
+// `while (shaderlab_loop_tick() && (c))`. Lines and the text outside the conditions are kept;
+// before each `#line N F` the guard's file number is set to F (two directives).
 std::string guardLoops(const std::string& prepared);
 // The declarations a guarded stage needs (stage 0: vertex, 1: fragment), for the prelude.
 std::string loopGuardPrelude(int stage);
