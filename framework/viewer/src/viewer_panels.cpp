@@ -175,64 +175,7 @@ void Viewer::drawVerdict(float height) {
     }
 }
 
-// The goals (met and not, why not, how judged), the failing scenes and their known-mistake hints,
-// in `check`'s words; remade when a grade comes back, drawn every frame.
-void Viewer::buildGradeLines() {
-    grade_lines_.clear();
-    if (!grade_) return;
-    const grader::ReportLab& lab = *grade_;
-    if (lab.goals.empty() && lab.status != "passed")
-        grade_lines_.push_back({PanelLine::Note,
-                                lab.status + ": " + grader::printableText(lab.message) +
-                                    (lab.status == "compile_error" || lab.status == "link_error"
-                                         ? " No goal can be judged until your shaders build."
-                                         : ""),
-                                ""});
-    for (std::size_t i = 0; i < lab.goals.size(); ++i) {
-        const grader::ReportGoal& g = lab.goals[i];
-        char points[32];
-        std::snprintf(points, sizeof points, "%.2f", g.points);
-        grade_lines_.push_back({g.met ? PanelLine::Met : PanelLine::Missed,
-                                std::to_string(i + 1) + ". " + g.title + " (" + points + ")", ""});
-        if (!g.met && !g.not_met_because.empty()) {
-            // By number: the goals it rests on are listed above it, title and all.
-            std::string refs;
-            for (std::size_t k = 0; k < g.not_met_because.size(); ++k)
-                for (std::size_t j = 0; j < lab.goals.size(); ++j)
-                    if (lab.goals[j].id == g.not_met_because[k])
-                        refs += std::string(k == 0                              ? ""
-                                            : k + 1 == g.not_met_because.size() ? " and "
-                                                                                : ", ") +
-                                std::to_string(j + 1);
-            grade_lines_.push_back({PanelLine::Why,
-                                    g.not_met_because.size() > 1 ? "waits on goals " + refs + ", not met"
-                                                                 : "waits on goal " + refs + ", not met",
-                                    ""});
-        } else if (!g.met && !g.failing.empty()) {
-            std::string where;
-            for (const std::string& f : g.failing) where += (where.empty() ? "" : ", ") + f;
-            grade_lines_.push_back({PanelLine::Why, "not met in " + where, ""});
-        }
-        std::string judged;
-        if (g.judged == "alone")
-            judged =
-                g.met && !g.whole_failing.empty()
-                    ? "your own work for it is right; it fails in your whole shader because of another part"
-                    : "judged on your own work for it";
-        if (!g.judged_note.empty()) judged += (judged.empty() ? "" : "; ") + g.judged_note;
-        if (!judged.empty()) grade_lines_.push_back({PanelLine::Judged, judged, ""});
-    }
-    for (const grader::ReportScene& sc : lab.scenes) {
-        if (sc.status == "passed") continue;
-        grade_lines_.push_back({PanelLine::FailingScene, "FAIL scene " + sc.name, sc.name});
-        if (!sc.message.empty())
-            grade_lines_.push_back({PanelLine::Why, grader::printableText(sc.message), ""});
-        if (!sc.hint.mistake.empty())
-            grade_lines_.push_back(
-                {PanelLine::Hint, "This looks like a known mistake: " + grader::printableText(sc.hint.about),
-                 ""});
-    }
-}
+void Viewer::buildGradeLines() { grade_lines_ = grade_ ? gradeLines(*grade_) : std::vector<PanelLine>(); }
 
 // The lab graded as `check` grades it: the points, then every goal and what is missing, as
 // `check` says it.

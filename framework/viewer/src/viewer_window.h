@@ -22,6 +22,7 @@
 #include "shaderlab/live/file_watch.h"
 #include "shaderlab/live/render_service.h"
 #include "shaderlab/viewer/viewer.h"
+#include "viewer_grade_lines.h"
 #include "viewer_jobs.h"
 
 struct GLFWwindow;
@@ -69,13 +70,6 @@ struct Shown {
     const PassImage* reference_pass = nullptr;
     const PassSpec* pass = nullptr;  // the pass that made it, when it is a pass output
     std::string note;                // why there is nothing to show
-};
-
-// One line of the grade panel, as drawn and as --panel-text writes it.
-struct PanelLine {
-    enum Kind { Met, Missed, Why, Judged, FailingScene, Hint, Note } kind = Note;
-    std::string text;
-    std::string scene;  // FailingScene: picking it shows this scene
 };
 
 class Viewer {
