@@ -418,7 +418,7 @@ function renderGrade(s) {
     if (message && !/[.!?]$/.test(message)) message += '.';
     message += (message ? ' ' : '') + (built
       ? 'No goal could be judged: every scene must render first.'
-      : 'No goal can be judged until your shaders build: fix the error shown beside the picture.');
+      : 'No goal can be judged until your shaders build: fix the error shown above your picture.');
   }
   $('grade-message').textContent = message;
   $('goals').replaceChildren(...goals.map((goal, i) => goalItem(lab, goal, i)));

@@ -8,13 +8,14 @@ namespace shaderlab::viewer::detail {
 
 std::vector<PanelLine> gradeLines(const grader::ReportLab& lab) {
     std::vector<PanelLine> lines;
-    if (lab.goals.empty() && lab.status != "passed")
-        lines.push_back({PanelLine::Note,
-                         lab.status + ": " + grader::printableText(lab.message) +
-                             (lab.status == "compile_error" || lab.status == "link_error"
-                                  ? " No goal can be judged until your shaders build."
-                                  : ""),
-                         ""});
+    if (lab.goals.empty() && lab.status != "passed") {
+        std::string note = lab.status + ": " + grader::printableText(lab.message);
+        if (lab.status == "compile_error" || lab.status == "link_error") {
+            if (!note.empty() && note.back() != '.') note += '.';
+            note += " No goal can be judged until your shaders build.";
+        }
+        lines.push_back({PanelLine::Note, note, ""});
+    }
     for (std::size_t i = 0; i < lab.goals.size(); ++i) {
         const grader::ReportGoal& g = lab.goals[i];
         char points[32];
