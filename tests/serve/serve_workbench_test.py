@@ -308,6 +308,11 @@ class WorkbenchTest(unittest.TestCase):
             goal = next(g for g in st["grade"]["lab"]["goals"] if not g["met"] and g["failing"])
             check = next(c for c in goal["failing"] if c.split("/")[0] != st["view"]["scene"])
             scene, pass_name = check.split("/")
+            # A goal lists its first checks; "+N more" shows the rest.
+            page.wait_for("document.querySelectorAll('#goals .chips button').length > 0", 20, "the checks as links")
+            page.eval("(() => { const want = '%s';"
+                      " if ([...document.querySelectorAll('#goals .chips button')].some(b => b.textContent === want)) return true;"
+                      " for (const b of document.querySelectorAll('#goals .chips button.link')) b.click(); return true; })()" % check)
             page.wait_for("[...document.querySelectorAll('#goals .chips button')].some(b => b.textContent === '%s')" % check,
                           20, "the check %s as a link" % check)
             page.eval("[...document.querySelectorAll('#goals .chips button')].find(b => b.textContent === '%s').click(); true" % check)

@@ -469,15 +469,21 @@ function judgedNote(goal) {
   return parts.join('; ');
 }
 
-// "scene/pass" checks as links that show that scene and pass.
+// "scene/pass" checks as links that show that scene and pass; past four, a button shows the rest.
 function checkLinks(checks) {
   const box = el('span', { class: 'chips' });
-  for (const check of checks) {
+  const shown = checks.length > 5 ? 4 : checks.length;
+  for (const check of checks.slice(0, shown)) {
     const cut = check.indexOf('/');
     const scene = cut < 0 ? check : check.slice(0, cut), pass = cut < 0 ? '' : check.slice(cut + 1);
     const b = el('button', { type: 'button', text: check, title: 'show scene ' + scene + (pass ? ', pass ' + pass : '') });
     b.addEventListener('click', () => showCheck(scene, pass));
     box.append(b);
+  }
+  if (shown < checks.length) {
+    const more = el('button', { type: 'button', class: 'link', text: '+' + (checks.length - shown) + ' more' });
+    more.addEventListener('click', () => { more.replaceWith(...checkLinks(checks.slice(shown)).childNodes); });
+    box.append(more);
   }
   return box;
 }
@@ -491,29 +497,39 @@ function showCheck(scene, pass) {
   setView(scene, { yaw: 0, pitch: 0, zoom: 1 }, 'off');
 }
 
+// The scenes as graded, compactly: the failing ones as links (their reasons in the link's title and,
+// once shown, in the verdict above), each known mistake in words, then the passing ones.
 function renderGradeScenes(lab) {
   const scenes = lab.scenes || [];
-  const failing = scenes.filter((sc) => sc.status !== 'passed');
-  const passing = scenes.filter((sc) => sc.status === 'passed');
-  const items = failing.map((sc) => {
-    const b = el('button', { type: 'button', class: 'fail-mark', text: '✗ ' + sc.name, title: 'show scene ' + sc.name,
-      'aria-label': 'scene ' + sc.name + ' fails' });
-    b.addEventListener('click', () => showCheck(sc.name, ''));
-    const li = el('li', {}, b);
-    if (sc.message) li.append(el('div', { class: 'note', text: sc.message }));
-    if (sc.hint && sc.hint.mistake) li.append(el('div', { class: 'hint', text: 'This looks like a known mistake: ' + sc.hint.about }));
-    return li;
-  });
-  if (passing.length) {
+  const items = [];
+  const group = (list, passed) => {
+    if (!list.length) return;
     const chips = el('span', { class: 'chips' });
-    for (const sc of passing) {
-      const b = el('button', { type: 'button', class: 'pass-mark', text: '✓ ' + sc.name, title: 'show scene ' + sc.name,
-        'aria-label': 'scene ' + sc.name + ' passes' });
+    for (const sc of list) {
+      const b = el('button', { type: 'button', class: passed ? 'pass-mark' : 'fail-mark',
+        text: (passed ? '✓ ' : '✗ ') + sc.name, title: passed ? 'show scene ' + sc.name : (sc.message || sc.status),
+        'aria-label': 'scene ' + sc.name + (passed ? ' passes' : ' fails') });
       b.addEventListener('click', () => showCheck(sc.name, ''));
       chips.append(b);
     }
-    items.push(el('li', {}, el('span', { class: 'note', text: plural(passing.length, 'scene passes', 'scenes pass') + ': ' }), chips));
+    items.push(el('li', {}, el('span', { class: 'note', text: passed
+      ? plural(list.length, 'scene passes', 'scenes pass') + ': ' : plural(list.length, 'scene fails', 'scenes fail') + ': ' }),
+    chips));
+  };
+  const failing = scenes.filter((sc) => sc.status !== 'passed');
+  group(failing, false);
+  // A known mistake is said once, with the scenes that look like it.
+  const hints = new Map();
+  for (const sc of failing) {
+    if (sc.hint && sc.hint.mistake) {
+      if (!hints.has(sc.hint.about)) hints.set(sc.hint.about, []);
+      hints.get(sc.hint.about).push(sc.name);
+    }
   }
+  for (const [about, names] of hints) {
+    items.push(el('li', { class: 'hint', text: 'This looks like a known mistake (' + names.join(', ') + '): ' + about }));
+  }
+  group(scenes.filter((sc) => sc.status === 'passed'), true);
   $('grade-scenes').replaceChildren(...items);
   $('grade-scenes-title').classList.toggle('hidden', items.length === 0);
 }
