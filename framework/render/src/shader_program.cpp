@@ -239,13 +239,17 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
 
 std::string loopGuardPrelude(int stage) {
     const std::string limit = std::to_string(kLoopGuardLimit);
-    const std::string k = std::to_string(stage == 0 ? 0 : 1);
-    // The macro takes the place of the call guardLoops() writes: __LINE__ is the loop condition's,
-    // numbered as the driver's log numbers it, and shaderlab_loop_file its source string's
-    // (guardLoops sets it at every `#line`).
+    const std::string files = std::to_string(kLoopGuardFiles), lines = std::to_string(kLoopGuardLines);
+    // One counter per stage, file and line, so that the one atomic the first invocation past the
+    // limit adds also says where its loop is: the index is a constant once the call is inlined,
+    // and the loop costs what a guard without places cost (a second store in the loop, even one
+    // never reached, made llvmpipe's loops half as slow again). The macro takes the place of the
+    // call guardLoops() writes: __LINE__ is the loop condition's, numbered as the driver's log
+    // numbers it, and shaderlab_loop_file its source string's (guardLoops sets it at every `#line`).
     return "#extension GL_ARB_shader_storage_buffer_object : require\n"
-           "layout(std430) buffer ShaderlabLoopGuard { uint shaderlab_loop_overruns[2]; "
-           "uint shaderlab_loop_first[2]; };\n"
+           "layout(std430) buffer ShaderlabLoopGuard { uint shaderlab_loop_overruns[" +
+           std::to_string(kLoopGuardWords) +
+           "]; };\n"
            "int shaderlab_loop_ticks = 0;\n"
            "bool shaderlab_loop_tick_at(int line, int file) {\n"
            "    shaderlab_loop_ticks += 1;\n"
@@ -253,26 +257,23 @@ std::string loopGuardPrelude(int stage) {
            limit +
            ") return true;\n"
            "    if (shaderlab_loop_ticks == " +
-           limit + " + 1) {\n        atomicAdd(shaderlab_loop_overruns[" + k +
-           "], 1u);\n"
-           "        atomicCompSwap(shaderlab_loop_first[" +
-           k +
-           "], 0u, uint(max(line, 1)) * 256u + uint(clamp(file, 0, 255)));\n"
-           "    }\n"
+           limit + " + 1)\n        atomicAdd(shaderlab_loop_overruns[(" + std::to_string(stage == 0 ? 0 : 1) +
+           " * " + files + " + clamp(file, 0, " + files + " - 1)) * " + lines + " + clamp(line, 0, " + lines +
+           " - 1)], 1u);\n"
            "    return false;\n"
            "}\n"
            "#define shaderlab_loop_file 0\n"
            "#define shaderlab_loop_tick() shaderlab_loop_tick_at(__LINE__, shaderlab_loop_file)\n";
 }
 
-LoopSite ShaderProgram::loopSite(int stage, unsigned packed) const {
+LoopSite ShaderProgram::loopSite(int stage, int file_number, int line) const {
     LoopSite site;
     const int k = stage == 0 ? 0 : 1;
-    const std::size_t file = packed % 256;
-    const int line = static_cast<int>(packed / 256);
-    if (packed == 0 || file >= stage_files_[k].size() || file >= stage_texts_[k].size()) return site;
+    if (file_number < 0 || line < 1) return site;
+    const std::size_t file = static_cast<std::size_t>(file_number);
+    if (file >= stage_files_[k].size() || file >= stage_texts_[k].size()) return site;
     const std::vector<std::string> lines = splitLines(stage_texts_[k][file]);
-    if (line < 1 || static_cast<std::size_t>(line) > lines.size()) return site;
+    if (static_cast<std::size_t>(line) > lines.size()) return site;
     site.file = stage_files_[k][file];
     site.line = line;
     site.source_line = lines[static_cast<std::size_t>(line - 1)];

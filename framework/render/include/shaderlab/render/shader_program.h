@@ -52,17 +52,20 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& 
 // hang: it ends with whatever it computed, and a loop whose result is unused is removed. Either
 // way a shader that never terminates on a GPU could pass. A guarded program counts, per shader
 // invocation, the iterations of all its loops (a call in every `for` and `while` condition);
-// past kLoopGuardLimit every loop ends at once and the invocation adds 1 to its stage's counter
-// in a storage buffer at binding kLoopGuardBinding, which the renderer reads after each pass. The
-// buffer is kLoopGuardWords uints: the counters (vertex, fragment), then for each stage where the
-// first invocation to run past the limit was: the line and source-string number of the loop it
-// was in (the preprocessor's __LINE__, which the `#line` directives make the student's own, and
-// the number of the last `#line`), packed as line * 256 + file (0: none). loopSite() reads that back. The
-// limit sits below llvmpipe's own so that it is always met first; the labs' loops stay far below it (the
-// irradiance convolution of lab 07, the largest, runs 6 x 16 x 16 + 6 x 16 + 6 = 1,638).
+// past kLoopGuardLimit every loop ends at once and the invocation adds 1 to a counter in a
+// storage buffer at binding kLoopGuardBinding, which the renderer reads after each pass. There is
+// a counter for each stage, source string and line (kLoopGuardWords uints: stage-major, then
+// kLoopGuardFiles source strings of kLoopGuardLines lines each; a later file or line counts in the
+// last), so the counter says where the loop was (the preprocessor's __LINE__, which the `#line`
+// directives make the student's own, and the number of the last `#line`); loopSite() reads that
+// back. The limit sits below llvmpipe's own so that it is always met first; the labs' loops stay
+// far below it (the irradiance convolution of lab 07, the largest, runs 6 x 16 x 16 + 6 x 16 + 6 =
+// 1,638).
 constexpr int kLoopGuardLimit = 60000;
 constexpr unsigned kLoopGuardBinding = 7;
-constexpr int kLoopGuardWords = 4;
+constexpr int kLoopGuardFiles = 8;
+constexpr int kLoopGuardLines = 2048;
+constexpr int kLoopGuardWords = 2 * kLoopGuardFiles * kLoopGuardLines;
 // `prepared` (a prepareSource() text) with a guard call in the condition of every `for` and
 // `while` (`do ... while` included) outside comments: `while (c)` becomes
 // `while (shaderlab_loop_tick() && (c))`. Lines and the text outside the conditions are kept;
@@ -129,9 +132,10 @@ class ShaderProgram {
                const std::string& fragment_file, const std::string& fragment_text);
 
     bool loopGuarded() const { return loop_guarded_; }
-    // Where a guarded stage's loop ran past the limit (stage 0: vertex, 1: fragment), from the
-    // value the guard stored for it (kLoopGuardWords); an empty site for 0 or a place it cannot hold.
-    LoopSite loopSite(int stage, unsigned packed) const;
+    // The loop at `line` of source string `file` of a guarded stage (0: vertex, 1: fragment), as
+    // its counter in the guard's buffer names it (kLoopGuardWords); an empty site for a place the
+    // stage does not have.
+    LoopSite loopSite(int stage, int file, int line) const;
     bool compiled() const { return compiled_; }
     bool linked() const { return linked_; }
     unsigned id() const { return program_; }
