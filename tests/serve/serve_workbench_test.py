@@ -404,7 +404,8 @@ class WorkbenchTest(unittest.TestCase):
             key(page, "Tab", vk=9)
             page.wait_for("ui.input && ui.input.k === 0", 10, "the first texture")
             self.assertEqual(page.eval("document.activeElement.id"), "stage")
-            self.assertIn("reads", self.text(page, "picture-label"))
+            page.wait_for("document.getElementById('picture-label').textContent.includes(' reads ')", 20,
+                          "the texture drawn")
             page.eval("document.getElementById('mode-split').click(); document.getElementById('stage').focus(); true")
             split = page.eval("ui.split")
             key(page, "]", code="BracketRight", vk=221)
