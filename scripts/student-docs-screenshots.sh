@@ -2,7 +2,8 @@
 # Takes the screenshots of docs/students.md: a student's course (labs without the reference
 # solutions, as students get it) in a scratch folder, `shaderlab view` on an Xvfb display of its
 # own, the window saved at each step of the walk-through into docs/images/; then the same course
-# in the browser workbench (`shaderlab serve`, headless Chromium: scripts/serve-screenshots.py).
+# in the browser workbench (`shaderlab serve`, headless Chromium: scripts/serve-screenshots.py), at
+# 1400, 1024 and 390 px wide and in the light theme.
 # Usage: bash scripts/student-docs-screenshots.sh   (after building; needs Xvfb, chromium and
 # python3-websocket, which scripts/setup.sh installs)
 set -euo pipefail
@@ -15,7 +16,7 @@ command -v Xvfb >/dev/null || { echo "Xvfb is not installed (scripts/setup.sh in
 [ -x "$sl" ] || { echo "build shaderlab first (scripts/setup.sh)" >&2; exit 2; }
 
 rm -rf "$course" && mkdir -p "$course/labs" "$images"
-cp -r labs/01-phong labs/06-bloom labs/scenes labs/shared labs/README.md "$course/labs/"
+cp -r labs/01-phong labs/02-toon labs/06-bloom labs/scenes labs/shared labs/README.md "$course/labs/"
 
 # A display of our own: Xvfb picks a free number and writes it to fd 3.
 exec 3< <(echo "pid $BASHPID"; exec Xvfb -displayfd 1 -screen 0 1280x800x24 -nolisten tcp 2>/dev/null)
@@ -47,6 +48,11 @@ cp "$repo/reference_solutions/01-phong/phong.frag" work/01-phong/phong.frag
 "$sl" view 01-phong --scene torus_grazing --frames 3 --screenshot-window "$images/view-pass.png" >/dev/null
 # 4b. The vertex data instead of the picture: the torus's texture coordinates as a checker.
 "$sl" view 01-phong --scene torus --debug uv-checker --frames 3 --screenshot-window "$images/view-debug.png" >/dev/null
+# 4c. The grade in the window: a known mistake of 02-toon, every goal and the hint.
+"$sl" start 02-toon >/dev/null
+cp "$repo"/reference_solutions/02-toon/* work/02-toon/
+cp "$repo"/tests/corpus/02-toon/ramp-lambert-coordinate/* work/02-toon/
+"$sl" view 02-toon --scene teapot --frames 3 --screenshot-window "$images/view-grade.png" >/dev/null
 # 5. A multi-pass lab: the bright pass of 06-bloom's starter beside its golden image.
 "$sl" start 06-bloom >/dev/null
 "$sl" view 06-bloom --scene teapot_white --image bright.color --mode split --frames 3 \

@@ -96,9 +96,13 @@ TEST(FolderWatch, TouchingWithoutChangingIsNoChange) {
     writeFile(dir / "a.frag", "same");
     fs::last_write_time(dir / "a.frag", fs::file_time_type::clock::now());
     EXPECT_FALSE(changeSeen(watch, std::chrono::milliseconds(300)));
+    // ... but a save all the same, handed out once, for the student's sign that it was seen.
+    EXPECT_EQ(watch.takeSavedUnchanged(), std::vector<std::string>{"a.frag"});
+    EXPECT_TRUE(watch.takeSavedUnchanged().empty());
     writeFile(dir / "b.frag", "new file");
     ASSERT_TRUE(changeSeen(watch));
     EXPECT_EQ(watch.changedFiles(), std::vector<std::string>{"b.frag"});
+    EXPECT_TRUE(watch.takeSavedUnchanged().empty()) << "a change is not an unchanged save";
     fs::remove(dir / "b.frag");
     ASSERT_TRUE(changeSeen(watch));
     EXPECT_EQ(watch.changedFiles(), std::vector<std::string>{"b.frag"});
@@ -429,6 +433,15 @@ TEST_F(ViewerWindow, BrokenShaderShowsTheErrorAndDoesNotCrash) {
     EXPECT_NE(view.output.find("does not compile"), std::string::npos) << view.output;
     EXPECT_NE(view.output.find("phong.frag:"), std::string::npos) << view.output;
     EXPECT_NE(view.output.find("^"), std::string::npos) << "the caret under the source line\n" << view.output;
+    // The lines around the error, under their numbers, and the command that opens it.
+    int line = 1;
+    for (std::size_t p = 0; p < at; ++p) line += frag[p] == '\n';
+    for (int n = line - 2; n <= line + 2; ++n)
+        EXPECT_NE(view.output.find(" " + std::to_string(n) + " | "), std::string::npos)
+            << "line " << n << " around the error at " << line << "\n"
+            << view.output;
+    EXPECT_NE(view.output.find("open it: "), std::string::npos) << view.output;
+    EXPECT_NE(view.output.find(" +" + std::to_string(line) + " "), std::string::npos) << view.output;
     grader::Image window;
     std::string err;
     ASSERT_TRUE(grader::readPng((out / "window.png").string(), &window, &err)) << err;
@@ -500,13 +513,52 @@ TEST_F(ViewerWindow, HangingShaderTimesOutAndTheWindowStaysResponsive) {
     const CommandRun view = runCommand(
         viewCommand("view 01-phong --submission " + sub.string() + labs() + " --timeout 1 --frames 5"));
     EXPECT_EQ(view.exit_code, 0) << view.output;
-    EXPECT_NE(view.output.find("Timed out: phong.frag"), std::string::npos) << view.output;
+    // The clock stops it, or on a fast machine the loop guard first (EndlessLoopIsNamedAtItsLine).
+    EXPECT_TRUE(view.output.find("Timed out: phong.frag") != std::string::npos ||
+                view.output.find("Endless loop: phong.frag:") != std::string::npos)
+        << view.output;
     // Frames went on while the shader hung (about 30 a second while idle).
     int frames = 0;
     const std::size_t f = view.output.find("view: ");
     for (std::size_t p = f; p != std::string::npos; p = view.output.find("view: ", p + 1))
         std::sscanf(view.output.c_str() + p, "view: %d frames", &frames);
     EXPECT_GE(frames, 15) << view.output;
+}
+
+// A loop the guard stops is called an endless loop, at its line, with the lines around it.
+TEST_F(ViewerWindow, EndlessLoopIsNamedAtItsLine) {
+    const fs::path sub = phongSubmission("loop");
+    std::string frag = readFile(sub / "01-phong" / "phong.frag");
+    const std::size_t at = frag.find("o_color = vec4(color, 1.0);");
+    ASSERT_NE(at, std::string::npos);
+    // Only a few pixels loop, so the guard stops it long before the clock.
+    frag.replace(at, std::string("o_color = vec4(color, 1.0);").size(),
+                 "float k = 0.0; if (gl_FragCoord.x < 130.0 && gl_FragCoord.x > 126.0) while (k >= 0.0) "
+                 "{ k += u_ambient + 1.0; } o_color = vec4(color * max(k, 1.0), 1.0);");
+    writeFile(sub / "01-phong" / "phong.frag", frag);
+    int line = 1;
+    for (std::size_t p = 0; p < at; ++p) line += frag[p] == '\n';
+    const CommandRun view = runCommand(
+        viewCommand("view 01-phong --submission " + sub.string() + labs() + " --timeout 30 --frames 3"));
+    EXPECT_EQ(view.exit_code, 0) << view.output;
+    EXPECT_NE(view.output.find("Endless loop: phong.frag:" + std::to_string(line) + " (pass 'shade')"),
+              std::string::npos)
+        << view.output;
+    EXPECT_EQ(view.output.find("Timed out"), std::string::npos) << view.output;
+    EXPECT_NE(view.output.find(" " + std::to_string(line - 1) + " | "), std::string::npos) << view.output;
+}
+
+// The picture's warnings and notes, with the lines around them, in the terminal (and the window).
+TEST_F(ViewerWindow, WarningsComeWithTheLinesAroundThem) {
+    const fs::path sub = scratch("starter");
+    fs::copy(kSource / "labs" / "01-phong", sub / "01-phong", fs::copy_options::recursive);
+    const CommandRun view = runCommand(
+        viewCommand("view 01-phong --submission " + sub.string() + labs() + " --no-reference --frames 2"));
+    EXPECT_EQ(view.exit_code, 0) << view.output;
+    const std::size_t at = view.output.find("is declared but never used");
+    ASSERT_NE(at, std::string::npos) << view.output;
+    EXPECT_NE(view.output.find("warning", at - 200), std::string::npos) << view.output;
+    EXPECT_NE(view.output.find("open it: ", at), std::string::npos) << view.output;
 }
 
 // What `check` says of a lab: its points as printed ("6.50 / 10.00") and, for each failing
@@ -552,8 +604,30 @@ TEST_F(ViewerWindow, GradesTheLabAndSaysWhatCheckSays) {
     // A minute at most: a window that never grades never settles, and would wait for ever.
     const std::string view = "timeout 60 env " + viewCommand("view 02-toon --submission " + sub.string() +
                                                              labs() + " --no-reference");
-    const CommandRun first = runCommand(view + " --frames 2");
+    const fs::path panel = scratch("hint_panel") / "panel.txt";
+    const CommandRun first = runCommand(view + " --frames 2 --panel-text " + panel.string());
     ASSERT_EQ(first.exit_code, 0) << first.output;
+    // The window lists every goal of the lab, met or not, and the hint, as the terminal says them.
+    const std::string listed = readFile(panel);
+    const shaderlab::LabSpecResult toon = shaderlab::parseLabSpec((kSource / "labs" / "02-toon").string());
+    ASSERT_TRUE(toon.ok);
+    for (const shaderlab::GoalSpec& g : toon.spec.goals) {
+        const std::size_t goal = listed.find(". " + g.title + " (");
+        ASSERT_NE(goal, std::string::npos) << g.id << " is not in the window's list:\n" << listed;
+        const std::size_t line_start =
+            listed.rfind('\n', goal) == std::string::npos ? 0 : listed.rfind('\n', goal) + 1;
+        const bool missed = listed.compare(line_start, 6, "miss: ") == 0;
+        const std::size_t not_met = first.output.find("goals not met: ");
+        ASSERT_NE(not_met, std::string::npos) << first.output;
+        const std::string missing = first.output.substr(not_met, first.output.find('\n', not_met) - not_met);
+        EXPECT_EQ(missed, (missing + ",").find(" " + g.id + ",") != std::string::npos) << g.id << "\n"
+                                                                                       << listed << "\n"
+                                                                                       << missing;
+    }
+    for (const auto& [scene, sentence] : said.hints) {
+        EXPECT_NE(listed.find("scene: FAIL scene " + scene), std::string::npos) << listed;
+        EXPECT_NE(listed.find("hint: " + sentence), std::string::npos) << listed;
+    }
     const std::size_t grade_line = first.output.find("view: grade " + said.points + "; goals not met: ");
     ASSERT_NE(grade_line, std::string::npos) << "check says " << said.points << "\n" << first.output;
     EXPECT_NE(first.output.find("ramp", grade_line), std::string::npos) << "the goal the mistake misses\n"

@@ -8,6 +8,8 @@
 #include <thread>
 
 #include "commands.h"
+#include "shaderlab/base/json_messages.h"
+#include "shaderlab/lab/lab_catalog.h"
 #include "shaderlab/lab/lab_spec.h"
 #include "shaderlab/live/file_watch.h"
 #include "shaderlab/render/debug_view.h"
@@ -21,6 +23,39 @@ namespace fs = std::filesystem;
 namespace shaderlab::cli {
 
 namespace {
+
+// True when the course has lab `id`; otherwise says so once, with the lab the student probably
+// meant ("phong" and "01-phogn" both mean 01-phong) and every lab the course has.
+bool courseHasLab(const std::string& labs_root, const std::string& id) {
+    std::error_code ec;
+    if (fs::is_regular_file(fs::path(labs_root) / id / "lab.json", ec)) return true;
+    const std::vector<std::string> ids = listLabIds(labs_root);
+    std::vector<std::string> names, numbers;  // "phong" and "01" of "01-phong"
+    for (const std::string& lab : ids) {
+        const std::size_t dash = lab.find('-');
+        names.push_back(dash == std::string::npos ? lab : lab.substr(dash + 1));
+        numbers.push_back(dash == std::string::npos ? std::string() : lab.substr(0, dash));
+    }
+    std::string guess = closestMatch(id, ids);
+    if (guess.empty()) {
+        const std::string name = closestMatch(id, names);
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            if ((!name.empty() && names[i] == name) || numbers[i] == id ||
+                (id.size() == 1 && numbers[i] == "0" + id))
+                guess = ids[i];
+    }
+    std::cerr << "shaderlab: the course in " << labs_root << " has no lab '" << id << "'";
+    if (!guess.empty()) std::cerr << ": did you mean " << guess << "?";
+    std::cerr << "\n";
+    if (ids.empty()) {
+        std::cerr << "  it has no labs at all (a lab is a folder with a lab.json)\n";
+    } else {
+        std::cerr << "  its labs:";
+        for (const std::string& lab : ids) std::cerr << " " << lab;
+        std::cerr << "\n";
+    }
+    return false;
+}
 
 // The student's submission folder (absolute) when it holds the lab's folder, or a message that
 // says how to get one.
@@ -64,6 +99,7 @@ int runView(const ViewArgs& args) {
 #else
     std::string labs_root;
     LabSpecResult parsed;
+    if (!resolveLabsRoot(args.common, &labs_root) || !courseHasLab(labs_root, args.lab)) return 2;
     if (!loadCommandLab(args.common, args.lab, &labs_root, &parsed)) return 2;
     viewer::ViewerOptions options;
     options.spec = parsed.spec;
@@ -93,6 +129,7 @@ int runView(const ViewArgs& args) {
     options.exit_after_reloads = args.exit_after_reloads;
     options.screenshot = args.screenshot;
     options.screenshot_window = args.screenshot_window;
+    options.panel_text = args.panel_text;
     parseDebugView(args.debug, &options.debug_view);  // CLI11 let through only known names
     return viewer::runViewer(options);
 #endif
@@ -101,6 +138,7 @@ int runView(const ViewArgs& args) {
 int runServe(const ServeArgs& args) {
     std::string labs_root;
     LabSpecResult parsed;
+    if (!resolveLabsRoot(args.common, &labs_root) || !courseHasLab(labs_root, args.lab)) return 2;
     if (!loadCommandLab(args.common, args.lab, &labs_root, &parsed)) return 2;
     serve::ServeOptions options;
     serve::WorkbenchOptions& w = options.workbench;
@@ -118,7 +156,7 @@ int runServe(const ServeArgs& args) {
 
 int runWatch(const WatchArgs& args) {
     std::string labs_root, submission;
-    if (!resolveLabsRoot(args.check.common, &labs_root)) return 2;
+    if (!resolveLabsRoot(args.check.common, &labs_root) || !courseHasLab(labs_root, args.check.lab)) return 2;
     if (!studentLabFolder(args.check.submission, labs_root, args.check.lab, &submission)) return 2;
     viewer::FolderWatch watch((fs::path(submission) / args.check.lab).string());
     int checks = 0;

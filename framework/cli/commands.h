@@ -98,6 +98,7 @@ struct ViewArgs {
     int frames = 0;
     int exit_after_reloads = 0;
     std::string screenshot, screenshot_window;
+    std::string panel_text;     // at exit: the panel's grade and verdict as text
     std::string debug = "off";  // first picture: the lab's, or a debug view of the vertex data
 };
 int runView(const ViewArgs& args);

@@ -141,6 +141,9 @@ CLI::App* addView(CLI::App& app, ViewArgs* args) {
     cmd->add_option("--screenshot", args->screenshot,
                     "at exit, save the picture as shown, one pixel per image pixel (PNG)");
     cmd->add_option("--screenshot-window", args->screenshot_window, "at exit, save the whole window (PNG)");
+    cmd->add_option(
+        "--panel-text", args->panel_text,
+        "at exit, save the panel's grade, goals, hints and verdict as the window lists them (text)");
     cmd->add_option("--debug", args->debug,
                     "first picture: the lab's (off) or a view of the vertex data (V cycles)")
         ->check(CLI::IsMember(debugViewList()))

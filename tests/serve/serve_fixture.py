@@ -24,6 +24,29 @@ def parse_args():
     return ap.parse_args()
 
 
+def run_browser_suite(take_args):
+    """The main of a suite that drives the page in Chromium: the arguments parsed and handed to
+    take_args, skipped (CTest's 77, saying why) where python3-websocket or chromium is missing,
+    then unittest over the tests named (all by default). Returns the exit code."""
+    import unittest
+    args = parse_args()
+    args.shaderlab = os.path.abspath(args.shaderlab)
+    args.source = os.path.abspath(args.source)
+    take_args(args)
+    try:
+        import websocket  # noqa: F401
+    except ImportError:
+        print("skipped: the python3 websocket module (python3-websocket) is not installed")
+        return SKIP
+    import cdp
+    if not cdp.find_chromium():
+        print("skipped: no chromium to drive (install chromium)")
+        return SKIP
+    argv = [sys.argv[0]] + list(args.tests)
+    prog = unittest.main(module="__main__", argv=argv, verbosity=2, exit=False)
+    return 0 if prog.result.wasSuccessful() else 1
+
+
 class Served:
     def __init__(self, args, lab, extra=(), submission=None):
         self.args = args

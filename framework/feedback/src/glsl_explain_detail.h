@@ -135,4 +135,8 @@ void explainTooMany(Diagnostic& d, const Ctx& c, std::size_t f, const std::strin
 // The operator errors Mesa words without a name; false when `msg` is none of them.
 bool explainOperator(Diagnostic& d, const Ctx& c, std::size_t f, const std::string& msg);
 
+// glsl_explain_matrix.cpp: "size mismatch for matrix multiplication", at the `*` whose sides do not
+// agree, with their types.
+void explainMatrixProduct(Diagnostic& d, const Ctx& c, std::size_t f);
+
 }  // namespace shaderlab::glsl_detail

@@ -258,6 +258,10 @@ void explainTooMany(Diagnostic& d, const Ctx& c, std::size_t f, const std::strin
 }
 
 bool explainOperator(Diagnostic& d, const Ctx& c, std::size_t f, const std::string& msg) {
+    if (msg == "size mismatch for matrix multiplication") {
+        explainMatrixProduct(d, c, f);
+        return true;
+    }
     if (msg == "vector size mismatch for arithmetic operator") {
         d.column = expressionCaret(c, d, f);
         const std::string* text = lineOf(c.m, f, d.line);

@@ -75,4 +75,63 @@ TEST(GlslExplain, AnUnknownLinkMessagePassesThroughWithItsWords) {
         << found[0].message;
 }
 
+// Mesa's "size mismatch for matrix multiplication" names no operator and no type: the caret goes
+// under the `*` whose sides do not agree, and the message names both sides with their types.
+TEST(GlslExplain, AMatrixProductOfTheWrongSizesNamesBothTypesAtTheOperator) {
+    const std::string line = "    gl_Position = u_view_projection * u_model * a_position;";
+    const StageText vert = stage("vertex", "phong.vert",
+                                 "#version 330 core\n"
+                                 "layout(location = 0) in vec3 a_position;\n"
+                                 "uniform mat4 u_model;\n"
+                                 "uniform mat4 u_view_projection;\n"
+                                 "void main() {\n" +
+                                     line +
+                                     "\n"
+                                     "}\n");
+    const std::vector<Diagnostic> parsed = {
+        {"phong.vert", 6, 19, "error", "size mismatch for matrix multiplication"}};
+    const std::vector<Diagnostic> found = shaderlab::explainCompileLog(parsed, vert, nullptr);
+    ASSERT_EQ(found.size(), 1u);
+    const Diagnostic& d = found[0];
+    EXPECT_EQ(d.line, 6);
+    EXPECT_EQ(d.source_line, line);
+    // The second `*`: the product of the two matrices is a mat4, the position a vec3.
+    EXPECT_EQ(d.column, static_cast<int>(line.rfind('*')) + 1) << d.message;
+    EXPECT_NE(d.message.find("`u_view_projection * u_model` is a mat4"), std::string::npos) << d.message;
+    EXPECT_NE(d.message.find("`a_position` a vec3"), std::string::npos) << d.message;
+    EXPECT_NE(d.explanation.find("vec4(a_position, 1.0)"), std::string::npos) << d.explanation;
+    EXPECT_EQ(d.driver_message, "size mismatch for matrix multiplication");
+}
+
+TEST(GlslExplain, AVectorOnTheLeftOfAMatrixAndSwizzlesAreTyped) {
+    const std::string line = "    vec3 n = v_normal.xyz * u_normal_matrix;";
+    const StageText frag = stage("fragment", "phong.frag",
+                                 "#version 330 core\n"
+                                 "in vec4 v_normal;\n"
+                                 "uniform mat3x4 u_normal_matrix;\n"
+                                 "void main() {\n" +
+                                     line + "\n}\n");
+    const std::vector<Diagnostic> found = shaderlab::explainCompileLog(
+        {{"phong.frag", 5, 14, "error", "size mismatch for matrix multiplication"}}, frag, nullptr);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].column, static_cast<int>(line.find('*')) + 1);
+    EXPECT_NE(found[0].message.find("`v_normal.xyz` is a vec3 and `u_normal_matrix` a mat3x4"),
+              std::string::npos)
+        << found[0].message;
+    EXPECT_NE(found[0].explanation.find("row"), std::string::npos) << found[0].explanation;
+}
+
+TEST(GlslExplain, AMatrixProductItCannotTypeStaysGeneralWithoutGuessing) {
+    const StageText vert = stage("vertex", "a.vert",
+                                 "#version 330 core\n"
+                                 "struct S { mat4 m; };\n"
+                                 "uniform S u_s;\n"
+                                 "void main() { gl_Position = (u_s.m) * vec3(1.0); }\n");
+    const std::vector<Diagnostic> found = shaderlab::explainCompileLog(
+        {{"a.vert", 4, 27, "error", "size mismatch for matrix multiplication"}}, vert, nullptr);
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].message, "the sizes in this matrix product do not agree");
+    EXPECT_NE(found[0].explanation.find("mat4 * vec3"), std::string::npos) << found[0].explanation;
+}
+
 }  // namespace

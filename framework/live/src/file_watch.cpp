@@ -115,11 +115,25 @@ bool FolderWatch::poll() {
     }
     for (const auto& [name, st] : committed_)
         if (!seen_.count(name)) changed.push_back(name);
+    if (changed.empty()) {  // saved again as it was: only the times moved
+        for (const auto& [name, st] : seen_) {
+            const auto old = committed_.find(name);
+            if (old != committed_.end() && old->second.mtime_ns != st.mtime_ns &&
+                std::find(saved_unchanged_.begin(), saved_unchanged_.end(), name) == saved_unchanged_.end())
+                saved_unchanged_.push_back(name);
+        }
+    }
     committed_ = seen_;
     if (changed.empty()) return false;
     changed_ = std::move(changed);
     changed_mtime_ns_ = newest;
     return true;
+}
+
+std::vector<std::string> FolderWatch::takeSavedUnchanged() {
+    std::vector<std::string> out;
+    out.swap(saved_unchanged_);
+    return out;
 }
 
 }  // namespace shaderlab::viewer

@@ -20,8 +20,22 @@ std::string timeoutCulprit(const LabSpec& spec, const IsolatedRender& r) {
     return "your shaders";
 }
 
+// Where the loop guard stopped a render: "phong.frag:29 (pass 'shade')", from the error it left.
+std::string loopCulprit(const LabSpec& spec, const IsolatedRender& r) {
+    for (const Diagnostic& d : r.render.diagnostics) {
+        if (d.severity != "error" || d.message.rfind("endless loop", 0) != 0) continue;
+        std::string where = d.file + (d.line > 0 ? ":" + std::to_string(d.line) : "");
+        const std::size_t at = d.message.find("in pass '");
+        if (at != std::string::npos)
+            where += " (" + d.message.substr(at + 3, d.message.find('\'', at + 9) - at - 2) + ")";
+        return where;
+    }
+    return timeoutCulprit(spec, r);
+}
+
 RenderFailure describeFailure(const LabSpec& spec, const IsolatedRender& r) {
     RenderFailure f;
+    const bool loop = r.status == IsolatedStatus::Timeout && r.limit == "loop";
     switch (r.status) {
         case IsolatedStatus::CompileError:
             f.title = "Your shader does not compile";
@@ -30,7 +44,8 @@ RenderFailure describeFailure(const LabSpec& spec, const IsolatedRender& r) {
             f.title = "Your shaders do not link";
             break;
         case IsolatedStatus::Timeout:
-            f.title = "Timed out: " + timeoutCulprit(spec, r);
+            f.title =
+                loop ? "Endless loop: " + loopCulprit(spec, r) : "Timed out: " + timeoutCulprit(spec, r);
             break;
         case IsolatedStatus::Missing:
             f.title = "A file is missing";
@@ -43,7 +58,8 @@ RenderFailure describeFailure(const LabSpec& spec, const IsolatedRender& r) {
     for (const Diagnostic& d : r.render.diagnostics)
         if (d.severity == "error" || build_error)
             f.text += grader::formatDiagnostic(toReportDiagnostic(d)) + "\n";
-    if (f.text.empty() || r.status == IsolatedStatus::Timeout) f.text = r.message + "\n" + f.text;
+    // The loop guard's error says it all; a time-out says which clock ran out.
+    if (f.text.empty() || (r.status == IsolatedStatus::Timeout && !loop)) f.text = r.message + "\n" + f.text;
     return f;
 }
 

@@ -68,6 +68,8 @@ bool sendAnswer(int fd, const IsolatedRender& r) {
                  {"message", r.message},
                  {"renderer", r.renderer},
                  {"last_event", r.last_event},
+                 {"limit", r.limit},
+                 {"endless_loop", r.render.endless_loop},
                  {"wall_ms", r.wall_ms}};
     json diags = json::array();
     for (const Diagnostic& d : r.render.diagnostics) diags.push_back(diagnosticToJson(d));
@@ -109,6 +111,8 @@ bool readAnswer(int fd, IsolatedRender* out) {
     out->message = head.value("message", "");
     out->renderer = head.value("renderer", "");
     out->last_event = head.value("last_event", "");
+    out->limit = head.value("limit", "");
+    out->render.endless_loop = head.value("endless_loop", false);
     out->wall_ms = head.value("wall_ms", 0.0);
     out->render.message = out->message;
     out->render.status = out->status == IsolatedStatus::Ok ? RenderStatus::Ok : RenderStatus::RenderError;

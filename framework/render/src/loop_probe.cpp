@@ -3,6 +3,7 @@
 #include "loop_probe.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "uniform_values.h"
 
@@ -21,16 +22,17 @@ bool drawProbingLoops(GLuint loop_guard, int width, int height, const std::funct
         return true;
     }
     const int rows = std::max(2, (kProbePixels / width) & ~1);
+    std::vector<GLuint> counts(kLoopGuardWords, 0);
     glEnable(GL_SCISSOR_TEST);
     bool clean = true;
     for (int y = 0; y < height && clean; y += rows) {
         glScissor(0, y, width, std::min(rows, height - y));
         draw();
-        // Reading the counters waits for the strip to be drawn.
-        GLuint counts[2] = {0, 0};
+        // Reading the counters (one per stage, file and line) waits for the strip to be drawn.
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counts, counts);
-        clean = counts[0] == 0 && counts[1] == 0;
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(counts.size() * sizeof(GLuint)),
+                           counts.data());
+        clean = std::all_of(counts.begin(), counts.end(), [](GLuint c) { return c == 0; });
     }
     glDisable(GL_SCISSOR_TEST);
     return clean;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <vector>
 
 #include "lab_runner.h"
 #include "loop_probe.h"
@@ -48,34 +49,53 @@ std::string glErrorName(GLenum e) {
 
 }  // namespace
 
-// The counters guarded programs write when a loop runs past kLoopGuardLimit (shader_program.h).
+// The counters guarded programs write when a loop runs past kLoopGuardLimit, one for each
+// stage, file and line (shader_program.h).
 void LabRunner::createLoopGuard() {
     if (!GLAD_GL_VERSION_4_3) return;
-    const GLuint zero[2] = {0, 0};
+    const std::vector<GLuint> zero(kLoopGuardWords, 0);
     glGenBuffers(1, &loop_guard_);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard_);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, zero, GL_DYNAMIC_READ);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(zero.size() * sizeof(GLuint)), zero.data(),
+                 GL_DYNAMIC_READ);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLoopGuardBinding, loop_guard_);
 }
 
-// After a pass: did a loop of its program run past the guard? Then the render stops here.
+// After a pass: did a loop of its program run past the guard? Then the render stops here, at the
+// line of the loop most invocations were in when they ran past it.
 bool LabRunner::checkLoopGuard(const PassSpec& pass, const std::string& scene) {
     if (!loop_guard_) return true;
-    GLuint counts[2] = {0, 0};
+    std::vector<GLuint> counts(kLoopGuardWords, 0);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard_);
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof counts, counts);
-    if (counts[0] == 0 && counts[1] == 0) return true;
-    const bool vertex = counts[0] > 0;
-    const std::string& file = vertex ? pass.program.vertex : pass.program.fragment;
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(counts.size() * sizeof(GLuint)),
+                       counts.data());
+    const std::size_t per_stage = counts.size() / 2;
+    std::size_t total[2] = {0, 0}, worst[2] = {0, 0};  // worst: the counter's place within its stage's
+    for (std::size_t k = 0; k < 2; ++k)
+        for (std::size_t i = 0; i < per_stage; ++i) {
+            const GLuint c = counts[k * per_stage + i];
+            total[k] += c;
+            if (c > counts[k * per_stage + worst[k]]) worst[k] = i;
+        }
+    if (total[0] == 0 && total[1] == 0) return true;
+    const int stage = total[0] > 0 ? 0 : 1;
+    const std::size_t at = worst[stage];
+    const LoopSite site = programOf(pass).loopSite(stage, static_cast<int>(at / kLoopGuardLines),
+                                                   static_cast<int>(at % kLoopGuardLines));
+    const bool vertex = stage == 0;
+    const std::string& file =
+        site.file.empty() ? (vertex ? pass.program.vertex : pass.program.fragment) : site.file;
+    const std::string which = site.line > 0 ? "the loop at line " + std::to_string(site.line) : "a loop";
     const std::string message =
-        "endless loop: in pass '" + pass.name + "' of scene '" + scene + "', a loop ran more than " +
+        "endless loop: in pass '" + pass.name + "' of scene '" + scene + "', " + which + " ran more than " +
         std::to_string(kLoopGuardLimit) + " times for one " + (vertex ? "vertex" : "pixel") + " (" +
-        std::to_string(vertex ? counts[0] : counts[1]) + (vertex ? " vertices" : " pixels") +
+        std::to_string(total[stage]) + (vertex ? " vertices" : " pixels") +
         "); the grader stops it there, as a GPU would hang on it. Check that every loop's condition "
         "becomes false: its counter must change, and towards the end";
     out_.endless_loop = true;
-    out_.diagnostics.push_back({file, 0, 0, "error", message});
-    return fail(RenderStatus::RenderError, file + ": " + message);
+    out_.diagnostics.push_back({file, site.line, site.column, "error", message, "", site.source_line});
+    return fail(RenderStatus::RenderError,
+                file + (site.line > 0 ? ":" + std::to_string(site.line) : "") + ": " + message);
 }
 
 bool LabRunner::runPass(std::size_t index, int iteration, bool last_iteration, SceneContext& ctx) {

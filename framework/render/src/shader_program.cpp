@@ -239,19 +239,59 @@ PreparedSource prepareSource(const std::string& student_text, const std::string&
 
 std::string loopGuardPrelude(int stage) {
     const std::string limit = std::to_string(kLoopGuardLimit);
+    const std::string files = std::to_string(kLoopGuardFiles), lines = std::to_string(kLoopGuardLines);
+    // One counter per stage, file and line, so that the one atomic the first invocation past the
+    // limit adds also says where its loop is: the index is a constant once the call is inlined,
+    // and the loop costs what a guard without places cost (a second store in the loop, even one
+    // never reached, made llvmpipe's loops half as slow again). The macro takes the place of the
+    // call guardLoops() writes: __LINE__ is the loop condition's, numbered as the driver's log
+    // numbers it, and shaderlab_loop_file its source string's (guardLoops sets it at every `#line`).
     return "#extension GL_ARB_shader_storage_buffer_object : require\n"
-           "layout(std430) buffer ShaderlabLoopGuard { uint shaderlab_loop_overruns[2]; };\n"
+           "layout(std430) buffer ShaderlabLoopGuard { uint shaderlab_loop_overruns[" +
+           std::to_string(kLoopGuardWords) +
+           "]; };\n"
            "int shaderlab_loop_ticks = 0;\n"
-           "bool shaderlab_loop_tick() {\n"
+           "bool shaderlab_loop_tick_at(int line, int file) {\n"
            "    shaderlab_loop_ticks += 1;\n"
            "    if (shaderlab_loop_ticks <= " +
            limit +
            ") return true;\n"
            "    if (shaderlab_loop_ticks == " +
-           limit + " + 1) atomicAdd(shaderlab_loop_overruns[" + std::to_string(stage == 0 ? 0 : 1) +
-           "], 1u);\n"
+           limit + " + 1)\n        atomicAdd(shaderlab_loop_overruns[(" + std::to_string(stage == 0 ? 0 : 1) +
+           " * " + files + " + clamp(file, 0, " + files + " - 1)) * " + lines + " + clamp(line, 0, " + lines +
+           " - 1)], 1u);\n"
            "    return false;\n"
-           "}\n";
+           "}\n"
+           "#define shaderlab_loop_file 0\n"
+           "#define shaderlab_loop_tick() shaderlab_loop_tick_at(__LINE__, shaderlab_loop_file)\n";
+}
+
+LoopSite ShaderProgram::loopSite(int stage, int file_number, int line) const {
+    LoopSite site;
+    const int k = stage == 0 ? 0 : 1;
+    if (file_number < 0 || line < 1) return site;
+    const std::size_t file = static_cast<std::size_t>(file_number);
+    if (file >= stage_files_[k].size() || file >= stage_texts_[k].size()) return site;
+    const std::vector<std::string> lines = splitLines(stage_texts_[k][file]);
+    if (static_cast<std::size_t>(line) > lines.size()) return site;
+    site.file = stage_files_[k][file];
+    site.line = line;
+    site.source_line = lines[static_cast<std::size_t>(line - 1)];
+    // The column of the loop's keyword, when the line has exactly one.
+    const std::string& text = site.source_line;
+    int found = 0;
+    for (std::size_t p = 0; p < text.size(); ++p) {
+        if (p > 0 && (std::isalnum(static_cast<unsigned char>(text[p - 1])) || text[p - 1] == '_')) continue;
+        for (const char* word : {"for", "while"}) {
+            const std::size_t n = std::strlen(word);
+            if (text.compare(p, n, word) != 0) continue;
+            const char after = p + n < text.size() ? text[p + n] : ' ';
+            if (std::isalnum(static_cast<unsigned char>(after)) || after == '_') continue;
+            site.column = found++ == 0 ? static_cast<int>(p) + 1 : 0;
+        }
+    }
+    if (found > 1) site.column = 0;
+    return site;
 }
 
 namespace {
@@ -293,6 +333,29 @@ std::size_t findAtDepth(const std::string& t, std::size_t p, char stop) {
         ++p;
     }
     return std::string::npos;
+}
+
+// Mesa's preprocessor gives __FILE__ as 0 inside a macro's expansion whatever `#line` said, so
+// the guard's file number comes from a macro of its own, set again before every `#line N F`
+// (a directive's own line number is reset by the `#line` after it: numbering is unchanged).
+std::string nameLoopFiles(const std::string& text) {
+    static const std::regex line_directive(R"(^[ \t]*#[ \t]*line[ \t]+\d+[ \t]+(\d{1,3})[ \t]*$)");
+    if (text.find("line") == std::string::npos) return text;
+    std::string out;
+    out.reserve(text.size() + 1024);
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string line = text.substr(start, end - start);
+        std::smatch m;
+        if (line.find("line") != std::string::npos && std::regex_match(line, m, line_directive))
+            out += "#undef shaderlab_loop_file\n#define shaderlab_loop_file " + m[1].str() + "\n";
+        out.append(text, start, end - start);
+        if (end < text.size()) out += '\n';
+        start = end + 1;
+    }
+    return out;
 }
 
 }  // namespace
@@ -342,7 +405,7 @@ std::string guardLoops(const std::string& prepared) {
         copied = p = cond_end;
     }
     out.append(prepared, copied, std::string::npos);
-    return out;
+    return nameLoopFiles(out);
 }
 
 std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::vector<std::string>& files) {
@@ -434,8 +497,11 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
         uniform_index_ = std::move(other.uniform_index_);
         uniform_list_ = std::move(other.uniform_list_);
         outputs_ = std::move(other.outputs_);
-        prepared_[0] = std::move(other.prepared_[0]);
-        prepared_[1] = std::move(other.prepared_[1]);
+        for (int k = 0; k < 2; ++k) {
+            prepared_[k] = std::move(other.prepared_[k]);
+            stage_files_[k] = std::move(other.stage_files_[k]);
+            stage_texts_[k] = std::move(other.stage_texts_[k]);
+        }
         defaults_ = std::move(other.defaults_);
     }
     return *this;
@@ -670,6 +736,8 @@ bool ShaderProgram::build(const StageSource& vertex, const StageSource& fragment
     stage[1] = compileStage(GL_FRAGMENT_SHADER, fragment);
     for (int k = 0; k < 2; ++k) {
         prepared_[k] = stage[k].prepared;
+        stage_files_[k] = stage[k].text.files;
+        stage_texts_[k] = stage[k].text.texts;
         stages_.push_back(stage[k].log);
     }
     const GLuint vs = stage[0].shader;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -419,6 +420,51 @@ TEST_F(LabFeatures, PassNoGradedImageDependsOnIsNotRun) {
     const auto every_pass = render(lab, /*all_passes=*/true);
     EXPECT_NE(every_pass.status, RenderStatus::Ok)
         << "the spinning pass ran and should have hit the loop guard";
+}
+
+// The loop guard's error sits at the loop that ran past its limit, in the file that holds it
+// (an included one too), with the caret under its keyword; a finite loop before it is not blamed.
+TEST_F(LabFeatures, TheLoopGuardNamesTheLoopThatRanPastItsLimit) {
+    const std::string spin =
+        "#version 330 core\n"
+        "in vec2 v_uv;\n"
+        "out vec4 o_color;\n"
+        "void main() {\n"
+        "    float a = 0.0;\n"
+        "    for (int i = 0; i < 4; ++i) a += 0.1;\n"
+        "    a += v_uv.x; while (a >= 0.0) a += 1.0;\n"
+        "    o_color = vec4(a);\n"
+        "}\n";
+    write("spin.frag", spin);
+    const std::string pass =
+        R"({"name": "spin", "program": {"vertex": "fullscreen.vert", "fragment": "spin.frag"}, "draw": "fullscreen"})";
+    const auto r = render(fullscreenLab(pass));
+    ASSERT_TRUE(r.endless_loop) << diagnostics(r);
+    const auto loop =
+        std::find_if(r.diagnostics.begin(), r.diagnostics.end(),
+                     [](const shaderlab::Diagnostic& d) { return d.message.rfind("endless loop", 0) == 0; });
+    ASSERT_NE(loop, r.diagnostics.end()) << diagnostics(r);
+    EXPECT_EQ(loop->file, "spin.frag");
+    EXPECT_EQ(loop->line, 7);
+    EXPECT_EQ(loop->source_line, "    a += v_uv.x; while (a >= 0.0) a += 1.0;");
+    EXPECT_EQ(loop->column, static_cast<int>(loop->source_line.find("while")) + 1);
+    EXPECT_NE(loop->message.find("the loop at line 7 ran more than"), std::string::npos) << loop->message;
+
+    // In an included file: that file and its own line.
+    write("spin_lib.glsl", "float spin(float a) {\n    while (a >= 0.0) a += 1.0;\n    return a;\n}\n");
+    write("spin.frag",
+          "#version 330 core\n#include \"spin_lib.glsl\"\nin vec2 v_uv;\nout vec4 o_color;\n"
+          "void main() { o_color = vec4(spin(v_uv.x)); }\n");
+    const auto included = render(fullscreenLab(pass));
+    ASSERT_TRUE(included.endless_loop) << diagnostics(included);
+    const auto in_lib =
+        std::find_if(included.diagnostics.begin(), included.diagnostics.end(),
+                     [](const shaderlab::Diagnostic& d) { return d.message.rfind("endless loop", 0) == 0; });
+    ASSERT_NE(in_lib, included.diagnostics.end()) << diagnostics(included);
+    EXPECT_EQ(in_lib->file, "spin_lib.glsl");
+    EXPECT_EQ(in_lib->line, 2);
+    EXPECT_EQ(in_lib->source_line, "    while (a >= 0.0) a += 1.0;");
+    EXPECT_EQ(in_lib->column, 5);
 }
 
 TEST_F(LabFeatures, BlendingCullingAndClearsPerAttachment) {

@@ -47,6 +47,11 @@ Route routeRequest(const std::string& method, const std::string& path) {
     if (path == "/api/state") return only(get, RouteKind::State);
     if (path == "/events") return only(get, RouteKind::Events);
     if (path == "/api/view") return only(method == "POST", RouteKind::View);
+    // Browsers ask for /favicon.ico whatever the page names: the page's own icon.
+    if (path == "/favicon.ico") {
+        r.asset = "favicon.svg";
+        return only(get, RouteKind::Asset);
+    }
     const std::vector<std::string> parts = split(path);
     // /assets/<name>: a name from the compiled-in table, compared as a string.
     if (parts.size() == 2 && parts[0] == "assets") {

@@ -204,7 +204,23 @@ void Server::view(const httplib::Request& req, httplib::Response& res) {
 
 }  // namespace
 
-int runServe(const ServeOptions& options) {
+int runServe(const ServeOptions& given) {
+    ServeOptions options = given;
+    // The terminal follows the page as `view`'s does: saves, pictures, errors, grades.
+    auto said = std::make_shared<std::mutex>();
+    if (!options.workbench.say)
+        options.workbench.say = [said](const std::string& message) {
+            std::lock_guard<std::mutex> lock(*said);
+            std::string out;
+            std::size_t start = 0;
+            for (std::size_t end; start <= message.size(); start = end + 1) {
+                end = message.find('\n', start);
+                if (end == std::string::npos) end = message.size();
+                out += (start == 0 ? "serve: " : "       ") + message.substr(start, end - start) + "\n";
+            }
+            std::fputs(out.c_str(), stdout);
+            std::fflush(stdout);
+        };
     std::string error;
     // The render server is forked first, before this process has any thread.
     std::unique_ptr<Workbench> bench = Workbench::create(options.workbench, &error);
@@ -273,8 +289,14 @@ int runServe(const ServeOptions& options) {
             "forwarding "
             "(docs/students.md).\n",
             options.host.c_str(), port);
+    // An address that means "every interface" is no address to open: this machine reaches it on
+    // its loopback (and a container's published port lands there too).
+    const bool any_address = options.host == "0.0.0.0" || options.host == "::" || options.host == "[::]";
     std::printf("shaderlab serve: open http://%s:%d/ in your browser (Ctrl-C stops)\n",
-                loopback(options.host) ? "127.0.0.1" : shown_host.c_str(), port);
+                loopback(options.host) || any_address ? "127.0.0.1" : shown_host.c_str(), port);
+    if (any_address)
+        std::printf("shaderlab serve: from another machine: http://<this machine's name or address>:%d/\n",
+                    port);
     std::fflush(stdout);
 
     guard.start(port, GuardLimits());

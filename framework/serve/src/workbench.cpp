@@ -111,13 +111,27 @@ bool Workbench::setView(const std::string& scene, const CameraOrbit& orbit, Debu
 }
 
 void Workbench::Impl::watchLoop() {
-    viewer::FolderWatch watch((fs::path(opt.submission_root) / opt.spec.id).string());
+    viewer::FolderWatch watch(labFolder());
     for (;;) {
         {
             std::unique_lock<std::mutex> lock(m);
             if (work.wait_for(lock, opt.poll, [this] { return stopping; })) return;
         }
-        if (!watch.poll()) continue;
+        const bool saved = watch.poll();
+        const std::vector<std::string> unchanged = watch.takeSavedUnchanged();
+        if (!unchanged.empty()) {
+            std::string names;
+            for (const std::string& f : unchanged) names += (names.empty() ? "" : ", ") + f;
+            say(names + " saved without a change: the picture is of these files already");
+            std::lock_guard<std::mutex> lock(m);
+            ++unchanged_saves;
+            unchanged_files = unchanged;
+            bump();
+        }
+        if (!saved) continue;
+        std::string names;
+        for (const std::string& f : watch.changedFiles()) names += (names.empty() ? "" : ", ") + f;
+        say(names + " changed; rendering again");
         const std::int64_t mtime = watch.changedMtimeNs();
         std::lock_guard<std::mutex> lock(m);
         ++generation;
@@ -182,7 +196,7 @@ void Workbench::Impl::renderLoop() {
 void Workbench::Impl::renderStudent(const std::string& scene_name, const CameraOrbit& view_orbit,
                                     std::uint64_t files_generation, std::int64_t save_ns) {
     viewer::RenderRequest request;
-    request.shader_dir = (fs::path(opt.submission_root) / opt.spec.id).string();
+    request.shader_dir = labFolder();
     request.containment_root = opt.submission_root;
     request.scene = scene_name;
     request.orbit = view_orbit;
@@ -201,9 +215,13 @@ void Workbench::Impl::renderStudent(const std::string& scene_name, const CameraO
             if (failure && failure->generation <= files_generation) failure.reset();
             bump();
         }
+        sayPicture(*snap, *student);
         judge(snap);
-        std::lock_guard<std::mutex> lock(m);
-        bump();
+        {
+            std::lock_guard<std::mutex> lock(m);
+            bump();
+        }
+        sayVerdict(*snap);
         return;
     }
     RenderFailureInfo info;
@@ -218,17 +236,9 @@ void Workbench::Impl::renderStudent(const std::string& scene_name, const CameraO
     if (r.status == IsolatedStatus::Timeout) info.title += ", scene " + scene_name;
     info.scene = scene_name;
     info.generation = files_generation;
-    for (const Diagnostic& d : r.render.diagnostics) {
-        const grader::ReportDiagnostic rd = toReportDiagnostic(d);
-        info.diagnostics.push_back({{"file", d.file},
-                                    {"line", d.line},
-                                    {"column", d.column},
-                                    {"severity", d.severity},
-                                    {"message", d.message},
-                                    {"explanation", d.explanation},
-                                    {"source_line", d.source_line},
-                                    {"formatted", grader::formatDiagnostic(rd)}});
-    }
+    info.endless_loop = r.limit == "loop";
+    info.diagnostics = diagnosticsJson(r.render.diagnostics, labFolder(), true);
+    sayFailure(info, r);
     std::lock_guard<std::mutex> lock(m);
     failure = std::move(info);
     bump();
@@ -279,8 +289,11 @@ void Workbench::Impl::renderReference(const std::string& scene_name, const Camer
         bump();
     }
     judge(snap);
-    std::lock_guard<std::mutex> lock(m);
-    bump();
+    {
+        std::lock_guard<std::mutex> lock(m);
+        bump();
+    }
+    sayVerdict(*snap);
 }
 
 // The debug view on the page, unless the newest one drawn is of this view already. Its snapshot
@@ -341,6 +354,7 @@ void Workbench::Impl::gradeLab(std::uint64_t files_generation) {
     // As report.json writes it, once: the page asks for the state often.
     nlohmann::json lab;
     if (ok) {
+        sayGrade(report.labs.front());
         grader::Report one;
         one.labs.push_back(report.labs.front());
         const nlohmann::json parsed = nlohmann::json::parse(grader::reportToJson(one), nullptr, false);
@@ -352,6 +366,7 @@ void Workbench::Impl::gradeLab(std::uint64_t files_generation) {
         grade_error.clear();
     } else {
         grade_error = "the lab could not be graded: " + (error.empty() ? "no result" : error);
+        say(grade_error);
     }
     grade_generation = files_generation;
     bump();
@@ -365,6 +380,7 @@ std::shared_ptr<Snapshot> Workbench::Impl::buildSnapshot(std::shared_ptr<const I
     snap->orbit = view_orbit;
     snap->student = student;
     snap->render_ms = student->render.scenes[0].render_ms;
+    snap->diagnostics = diagnosticsJson(student->render.diagnostics, labFolder(), false);
     if (!opt.reference_root.empty()) {
         std::lock_guard<std::mutex> lock(m);
         if (reference && reference->status == IsolatedStatus::Ok && !reference->render.scenes.empty() &&

@@ -15,6 +15,7 @@
 
 #include "grader/metrics/scoring.h"
 #include "grader/reports/report.h"
+#include "shaderlab/live/diagnostic_view.h"
 #include "shaderlab/live/file_watch.h"
 #include "shaderlab/live/render_service.h"
 #include "shaderlab/serve/workbench.h"
@@ -65,6 +66,9 @@ struct Snapshot {
     // could not show. Off: the lab's picture.
     DebugView debug = DebugView::Off;
     std::vector<std::string> notes;
+    // The render's warnings and notes as the page shows them (diagnosticsJson): errors stop a
+    // render, so a picture has none.
+    nlohmann::json diagnostics = nlohmann::json::array();
 
     mutable std::mutex m;
     std::vector<std::shared_ptr<const Judgement>> judged;  // by image; empty until judged
@@ -75,7 +79,16 @@ struct RenderFailureInfo {
     std::string title, text, scene;
     nlohmann::json diagnostics = nlohmann::json::array();
     std::uint64_t generation = 0;
+    bool endless_loop = false;  // the loop guard stopped it (a time-out otherwise, when one)
 };
+
+// Diagnostics as the page shows them: each with the lines around it (diagnostic_view.h), the text
+// the terminal prints, and the links that open it in an editor. `lab_folder` is the student's.
+nlohmann::json diagnosticJson(const Diagnostic& d, const std::string& lab_folder);
+nlohmann::json diagnosticsJson(const std::vector<Diagnostic>& ds, const std::string& lab_folder, bool errors);
+
+// The heat map's colours, for the page's legend: the FLIP error at evenly spaced values.
+nlohmann::json heatmapLegendJson();
 
 struct Workbench::Impl {
     WorkbenchOptions opt;
@@ -115,6 +128,10 @@ struct Workbench::Impl {
     std::uint64_t grade_generation = 0;
     std::string grade_error;
     std::map<int, std::shared_ptr<const grader::Image>> files;  // input files read, by index
+    // Saves that changed nothing (FolderWatch::takeSavedUnchanged): how many, and the last files.
+    std::uint64_t unchanged_saves = 0;
+    std::vector<std::string> unchanged_files;
+    std::string warnings_said;  // the render warnings last printed, to print each set once
 
     std::thread render_thread, watch_thread;
 
@@ -122,6 +139,15 @@ struct Workbench::Impl {
         ++version;
         changed.notify_all();
     }
+    std::string labFolder() const;
+    void say(const std::string& message) const {
+        if (opt.say) opt.say(message);
+    }
+    // What the terminal is told of a picture, a failed render, a grade (workbench_messages.cpp).
+    void sayPicture(const Snapshot& snap, const IsolatedRender& r);
+    void sayFailure(const RenderFailureInfo& info, const IsolatedRender& r);
+    void sayVerdict(const Snapshot& snap);
+    void sayGrade(const grader::ReportLab& lab) const;
     void renderLoop();
     void watchLoop();
     void renderStudent(const std::string& scene, const CameraOrbit& orbit, std::uint64_t generation,

@@ -18,6 +18,25 @@ namespace {
 // JSON has no infinity: an identical image's PSNR is null, with "identical" saying why.
 json number(double v) { return std::isfinite(v) ? json(v) : json(); }
 
+json boxJson(const grader::PixelBox& b) { return {{"x0", b.x0}, {"y0", b.y0}, {"x1", b.x1}, {"y1", b.y1}}; }
+
+json worstJson(const grader::WorstRegion& w) {
+    if (w.tile.empty() || w.mismatch_count == 0) return json();
+    return {{"x", w.centre.x},
+            {"y", w.centre.y},
+            {"tile", boxJson(w.tile)},
+            {"bounds", boxJson(w.mismatch_bounds)},
+            {"count", w.mismatch_count}};
+}
+
+json nonFiniteJson(const grader::ImageVerdict& v) {
+    if (v.nan_count + v.inf_count == 0 || v.non_finite_first.empty()) return json();
+    return {{"x", v.non_finite_first.front().x},
+            {"y", v.non_finite_first.front().y},
+            {"box", boxJson(v.non_finite_box)},
+            {"count", v.nan_count + v.inf_count}};
+}
+
 json verdictJson(const Judgement& j) {
     const grader::MetricSet& m = j.verdict.covered;
     return {{"passed", j.verdict.passed},
@@ -36,7 +55,11 @@ json verdictJson(const Judgement& j) {
               {"flip_mean_max", j.thresholds.flip_mean_max},
               {"mismatch_max", j.thresholds.mismatch_max},
               {"pixel_tolerance", j.thresholds.pixel_tolerance}}},
-            {"range", j.hdr ? "hdr" : "display"}};
+            {"range", j.hdr ? "hdr" : "display"},
+            // Where the picture should point: the window of the worst mismatches, and the first
+            // pixel that is not a number (with the box of all of them).
+            {"worst", worstJson(j.verdict.worst)},
+            {"non_finite", nonFiniteJson(j.verdict)}};
 }
 
 json pictureJson(const Snapshot& s) {
@@ -93,6 +116,7 @@ json pictureJson(const Snapshot& s) {
             {"judged", !judged.empty()},
             // What grading would say of this scene: only in the graded view, once judged.
             {"scene_passed", graded_view && any_judged ? json(all_passed) : json()},
+            {"diagnostics", s.diagnostics},
             {"images", images}};
 }
 
@@ -191,12 +215,15 @@ json Workbench::state() const {
         {"picture", w.snapshot ? pictureJson(*w.snapshot) : json()},
         {"error", json()},
         {"grade", json()},
+        {"heatmap", heatmapLegendJson()},
+        {"unchanged_saves", {{"count", w.unchanged_saves}, {"files", w.unchanged_files}}},
     };
     if (w.failure) {
         out["error"] = {{"title", w.failure->title},
                         {"text", w.failure->text},
                         {"scene", w.failure->scene},
                         {"generation", w.failure->generation},
+                        {"endless_loop", w.failure->endless_loop},
                         {"diagnostics", w.failure->diagnostics}};
     }
     if (!w.grade.is_null() || !w.grade_error.empty())

@@ -1,9 +1,9 @@
-// The panel of controls on the left of the window: the view mode, the debug view of the vertex
-// data (viewer_debug.cpp), the scene and camera, the
-// images of the scene and the textures a pass reads, the lab's grade (points, goals not met,
-// failing scenes and their known-mistake hints, in `check`'s words), the verdict grading would
-// give this scene, and the keys. It reads what the other parts worked out; it judges, grades and
-// renders nothing itself.
+// The panels: on the left of the window the controls (the view mode, the debug view of the vertex
+// data, viewer_debug.cpp; the scene and camera; the images of the scene and the textures a pass
+// reads; the keys), on the right the verdict grading would give this scene and the lab's grade
+// (points, every goal and why one is not met, failing scenes and their known-mistake hints, in
+// `check`'s words). They read what the other parts worked out; they judge, grade and render
+// nothing themselves.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -20,8 +20,6 @@ namespace {
 
 // Room at the bottom of the controls for the list of keys.
 constexpr float kKeysHeight = 190.0f;
-// At most this much of the panel for the goals and scenes the grade misses (it scrolls).
-constexpr float kGradeHeight = 190.0f;
 
 const ImVec4 kGreen(0.3f, 0.9f, 0.3f, 1), kRed(1, 0.35f, 0.3f, 1), kHint(1, 0.8f, 0.3f, 1);
 
@@ -73,10 +71,21 @@ void Viewer::drawControls(float width, float height) {
     // Passes and the textures they read.
     const std::vector<PassImage>* mine = studentPasses();
     if (mine) drawImageList(*mine);
-
-    drawGrade();
-    drawVerdict(height);
+    ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), height - kKeysHeight));
     drawKeys();
+    ImGui::End();
+}
+
+// The column on the right: the verdict grading would give this scene, then the lab's grade with
+// every goal, the failing scenes and their known-mistake hints.
+void Viewer::drawResults(float x, float width, float height) {
+    ImGui::SetNextWindowPos(ImVec2(x, 0));
+    ImGui::SetNextWindowSize(ImVec2(width, height));
+    ImGui::Begin("results", nullptr,
+                 ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoBringToFrontOnFocus);
+    drawVerdict(height);
+    drawGrade();
     ImGui::End();
 }
 
@@ -124,16 +133,21 @@ void Viewer::drawImageList(const std::vector<PassImage>& mine) {
     ImGui::TextDisabled("* graded image");
 }
 
-// The verdict grading would give, or why there is none yet.
+// The verdict grading would give, or why there is none yet: at most a third of the column.
 void Viewer::drawVerdict(float height) {
-    ImGui::Separator();
+    ImGui::TextDisabled("THIS SCENE");
     if (!judged_.empty()) {
         bool passed = true;
         for (const Judged& j : judged_) passed = passed && j.verdict.passed;
         ImGui::TextColored(passed ? kGreen : kRed, "scene %s: %s", student_scene_.c_str(),
                            passed ? "PASS" : "FAIL");
         if (!judged_graded_view_) ImGui::TextDisabled("(this turned view is not graded)");
-        ImGui::BeginChild("verdict", ImVec2(0, -kKeysHeight), false);
+        if (!error_title_.empty()) ImGui::TextDisabled("(of the last good picture, before the error)");
+        const float lines = 3.0f * static_cast<float>(judged_.size()) + 1.0f;
+        ImGui::BeginChild("verdict",
+                          ImVec2(0, std::min(height / 3.0f, lines * ImGui::GetTextLineHeightWithSpacing())),
+                          false);
+        if (!error_title_.empty()) ImGui::PushStyleVar(ImGuiStyleVar_Alpha, 0.5f);
         for (const Judged& j : judged_) {
             const grader::MetricSet& m = j.verdict.covered;
             ImGui::TextColored(j.verdict.passed ? kGreen : kRed, "%s", j.verdict.passed ? "ok  " : "FAIL");
@@ -147,6 +161,7 @@ void Viewer::drawVerdict(float height) {
             if (j.verdict.nan_count) ImGui::Text("  %zu NaN pixels", j.verdict.nan_count);
             for (const std::string& r : j.verdict.reasons) ImGui::TextWrapped("  %s", r.c_str());
         }
+        if (!error_title_.empty()) ImGui::PopStyleVar();
         ImGui::EndChild();
     } else if (!opt_.reference_root.empty() && !reference_error_.empty()) {
         ImGui::TextWrapped("%s", reference_error_.c_str());
@@ -158,12 +173,15 @@ void Viewer::drawVerdict(float height) {
     } else {
         ImGui::TextDisabled("verdict: waiting for both pictures");
     }
-    if (judged_.empty()) ImGui::SetCursorPosY(std::max(ImGui::GetCursorPosY(), height - kKeysHeight));
 }
 
-// The lab graded as `check` grades it: the points, then what is missing, as `check` says it.
+void Viewer::buildGradeLines() { grade_lines_ = grade_ ? gradeLines(*grade_) : std::vector<PanelLine>(); }
+
+// The lab graded as `check` grades it: the points, then every goal and what is missing, as
+// `check` says it.
 void Viewer::drawGrade() {
     ImGui::Separator();
+    ImGui::TextDisabled("YOUR GRADE (as `check` gives it)");
     if (!grade_) {
         if (grade_error_.empty())
             ImGui::TextDisabled("grade: grading the lab as `check` does");
@@ -173,52 +191,83 @@ void Viewer::drawGrade() {
     }
     const grader::ReportLab& lab = *grade_;
     const bool passed = lab.status == "passed";
-    ImGui::TextColored(passed ? kGreen : kRed, "lab %s: %.2f / %.2f points", lab.id.c_str(), lab.score,
-                       lab.max_score);
-    if (grading()) {
+    // While a newer save is graded this grade is the previous save's: said, and dimmed.
+    const bool old = grading();
+    ImGui::TextColored(old      ? ImVec4(0.6f, 0.6f, 0.6f, 1)
+                       : passed ? kGreen
+                                : kRed,
+                       "lab %s: %.2f / %.2f points", lab.id.c_str(), lab.score, lab.max_score);
+    if (old) {
         ImGui::SameLine();
-        ImGui::TextDisabled("(grading again)");
+        ImGui::TextDisabled("(previous save; grading)");
     }
     if (!grade_error_.empty()) ImGui::TextWrapped("%s", grade_error_.c_str());
-    if (passed) return;
-    // Half of what is left above the keys, so that the scene's verdict below keeps the rest.
-    const float room = ImGui::GetContentRegionAvail().y - kKeysHeight;
-    ImGui::BeginChild("grade", ImVec2(0, std::clamp(room * 0.5f, 60.0f, kGradeHeight)), false);
-    if (lab.goals.empty())
-        ImGui::TextWrapped("%s: %s", lab.status.c_str(), grader::printableText(lab.message).c_str());
-    for (const grader::ReportGoal& g : lab.goals) {
-        if (g.met) continue;
-        ImGui::TextColored(kRed, "MISS");
-        ImGui::SameLine();
-        ImGui::TextWrapped("goal %s (%.2f)", g.title.c_str(), g.points);
-        if (!g.not_met_because.empty()) {
-            ImGui::TextWrapped("  not met because %s %s not met",
-                               grader::goalsNamed(lab, g.not_met_because).c_str(),
-                               g.not_met_because.size() > 1 ? "are" : "is");
-        } else {
-            std::string where;
-            for (const std::string& f : g.failing) where += (where.empty() ? "" : ", ") + f;
-            ImGui::TextWrapped("  not met in %s", where.c_str());
+    // The rest of the column; it scrolls.
+    ImGui::BeginChild("grade", ImVec2(0, 0), false);
+    if (old) ImGui::PushStyleVar(ImGuiStyleVar_Alpha, 0.5f);
+    for (const PanelLine& l : grade_lines_) {
+        switch (l.kind) {
+            case PanelLine::Met:
+            case PanelLine::Missed:
+                ImGui::TextColored(l.kind == PanelLine::Met ? kGreen : kRed, "%s",
+                                   l.kind == PanelLine::Met ? "ok  " : "MISS");
+                ImGui::SameLine();
+                ImGui::TextWrapped("%s", l.text.c_str());
+                break;
+            case PanelLine::Why:
+            case PanelLine::Judged:
+                ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+                ImGui::Indent(28.0f);
+                ImGui::TextWrapped("%s", l.text.c_str());
+                ImGui::Unindent(28.0f);
+                ImGui::PopStyleColor();
+                break;
+            case PanelLine::FailingScene:
+                // Picking a failing scene shows it.
+                ImGui::PushStyleColor(ImGuiCol_Text, kRed);
+                if (ImGui::Selectable((l.text + "##grade").c_str(), l.scene == sceneName()))
+                    for (std::size_t i = 0; i < spec_.scenes.size(); ++i)
+                        if (spec_.scenes[i].name == l.scene && static_cast<int>(i) != scene_) {
+                            scene_ = static_cast<int>(i);
+                            requestStudent(0);
+                        }
+                ImGui::PopStyleColor();
+                break;
+            case PanelLine::Hint:
+                ImGui::PushStyleColor(ImGuiCol_Text, kHint);
+                ImGui::Indent(12.0f);
+                ImGui::TextWrapped("%s", l.text.c_str());
+                ImGui::Unindent(12.0f);
+                ImGui::PopStyleColor();
+                break;
+            case PanelLine::Note:
+                ImGui::TextWrapped("%s", l.text.c_str());
+                break;
         }
     }
-    for (const grader::ReportScene& sc : lab.scenes) {
-        if (sc.status == "passed") continue;
-        // Picking a failing scene shows it.
-        if (ImGui::Selectable(("FAIL scene " + sc.name + "##grade").c_str(), sc.name == sceneName()))
-            for (std::size_t i = 0; i < spec_.scenes.size(); ++i)
-                if (spec_.scenes[i].name == sc.name && static_cast<int>(i) != scene_) {
-                    scene_ = static_cast<int>(i);
-                    requestStudent(0);
-                }
-        if (!sc.message.empty()) ImGui::TextWrapped("  %s", sc.message.c_str());
-        if (!sc.hint.mistake.empty()) {
-            ImGui::PushStyleColor(ImGuiCol_Text, kHint);
-            ImGui::TextWrapped("  This looks like a known mistake: %s",
-                               grader::printableText(sc.hint.about).c_str());
-            ImGui::PopStyleColor();
-        }
-    }
+    if (old) ImGui::PopStyleVar();
     ImGui::EndChild();
+}
+
+// For scripts and tests (--panel-text): the grade's lines as drawn, then the scene's verdict.
+void Viewer::savePanelText(const std::string& path) const {
+    std::string text;
+    if (grade_) {
+        char head[160];
+        std::snprintf(head, sizeof head, "lab %s: %.2f / %.2f points\n", grade_->id.c_str(), grade_->score,
+                      grade_->max_score);
+        text += head;
+    }
+    static const char* const kinds[] = {"met", "miss", "why", "judged", "scene", "hint", "note"};
+    for (const PanelLine& l : grade_lines_) text += std::string(kinds[l.kind]) + ": " + l.text + "\n";
+    for (const Judged& j : judged_)
+        text += std::string("verdict: ") + (j.verdict.passed ? "ok " : "FAIL ") + j.label + "\n";
+    FILE* f = std::fopen(path.c_str(), "w");
+    if (!f || std::fputs(text.c_str(), f) < 0 || std::fclose(f) != 0) {
+        std::fprintf(stderr, "view: cannot write %s\n", path.c_str());
+        return;
+    }
+    std::printf("view: saved the panel's text to %s\n", path.c_str());
 }
 
 // Which reference the verdict uses, and the keys.

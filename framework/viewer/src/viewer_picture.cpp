@@ -84,14 +84,20 @@ void Viewer::drawPicture(float x, float width, float height) {
     else
         ImGui::Text("%s", shown_.label.c_str());
 
-    const float error_h = error_title_.empty() ? 0.0f : std::min(200.0f, height * 0.35f);
+    // Under the picture: the last failed render's errors, else the warnings of the one on screen.
+    const bool error = !error_title_.empty();
+    const bool warnings = !error && !warning_text_.empty() && debug_ == DebugView::Off;
+    const float message_h = error      ? std::min(240.0f, height * 0.38f)
+                            : warnings ? std::min(170.0f, height * 0.26f)
+                                       : 0.0f;
     const float inspector_h = 80.0f;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const float area_w = avail.x, area_h = avail.y - error_h - inspector_h;
+    const float area_w = avail.x, area_h = avail.y - message_h - inspector_h;
 
     drawImage(area_w, area_h);
     drawInspector();
-    if (!error_title_.empty()) drawErrors(height, error_h);
+    if (error) drawMessages(error_title_, error_text_, true, height - message_h - 8.0f, message_h);
+    if (warnings) drawMessages(warning_title_, warning_text_, false, height - message_h - 8.0f, message_h);
     ImGui::End();
 }
 
@@ -192,14 +198,17 @@ void Viewer::drawInspector() {
     }
 }
 
-// The last failed render's messages, at the bottom of the picture's window.
-void Viewer::drawErrors(float height, float error_h) {
-    ImGui::SetCursorPosY(height - error_h - 8.0f);
-    ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0.25f, 0.05f, 0.05f, 1.0f));
-    ImGui::BeginChild("errors", ImVec2(0, error_h), true);
-    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", error_title_.c_str());
+// A failed render's errors (red) or a picture's warnings (amber), at the bottom of the picture's
+// window: each message with the lines around it, its caret, and its explanation.
+void Viewer::drawMessages(const std::string& title, const std::string& text, bool error, float top, float h) {
+    ImGui::SetCursorPosY(top);
+    ImGui::PushStyleColor(ImGuiCol_ChildBg,
+                          error ? ImVec4(0.25f, 0.05f, 0.05f, 1.0f) : ImVec4(0.2f, 0.16f, 0.05f, 1.0f));
+    ImGui::BeginChild(error ? "errors" : "warnings", ImVec2(0, h), true,
+                      ImGuiWindowFlags_HorizontalScrollbar);
+    ImGui::TextColored(error ? ImVec4(1, 0.45f, 0.4f, 1) : ImVec4(1, 0.8f, 0.3f, 1), "%s", title.c_str());
     // Source lines and carets keep their columns; the explanations ("= ...") wrap.
-    std::istringstream lines(error_text_);
+    std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {
         const std::size_t first = line.find_first_not_of(' ');
         if (first != std::string::npos && line.compare(first, 2, "= ") == 0)

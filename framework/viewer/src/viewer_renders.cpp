@@ -10,12 +10,32 @@
 #include "grader/base/untrusted_text.h"
 #include "grader/reports/report.h"
 #include "shaderlab/grading/grading.h"
+#include "shaderlab/live/diagnostic_view.h"
 #include "shaderlab/live/render_outcome.h"
 #include "viewer_window.h"
 
 namespace fs = std::filesystem;
 
 namespace shaderlab::viewer::detail {
+
+namespace {
+
+// The diagnostics of `severity` ("error", or anything else for warnings and notes) with the lines
+// around each, for the window; `terminal` adds the command that opens each in the editor.
+std::string messagesText(const std::vector<Diagnostic>& ds, bool errors, const std::string& folder,
+                         bool terminal) {
+    std::string text;
+    for (const Diagnostic& d : ds) {
+        if ((d.severity == "error") != errors) continue;
+        const DiagnosticView v = viewDiagnostic(d, folder);
+        text += formatWithContext(v) + "\n";
+        const std::string open = editorCommand(v);
+        if (terminal && !open.empty()) text += "   open it: " + open + "\n";
+    }
+    return text;
+}
+
+}  // namespace
 
 const std::vector<PassImage>* Viewer::studentPasses() const {
     if (!student_ || student_->render.scenes.empty()) return nullptr;
@@ -107,6 +127,7 @@ void Viewer::onGrade(Finished& f) {
         return;
     }
     grade_ = std::move(f.report.labs.front());
+    buildGradeLines();
     const grader::ReportLab& lab = *grade_;
     std::string missed;
     for (const grader::ReportGoal& g : lab.goals)
@@ -146,12 +167,29 @@ void Viewer::onStudent(const Finished& f) {
         } else {
             std::printf("view: %s\n", line);
         }
+        // Warnings and notes: in the window under the picture; in the terminal when they change.
+        const std::string folder = (fs::path(opt_.submission_root) / spec_.id).string();
+        std::size_t warnings = 0, notes = 0;
+        for (const Diagnostic& d : r.render.diagnostics) {
+            warnings += d.severity == "warning";
+            notes += d.severity != "warning" && d.severity != "error";
+        }
+        warning_text_ = messagesText(r.render.diagnostics, false, folder, false);
+        warning_title_ = std::to_string(warnings) + (warnings == 1 ? " warning" : " warnings") +
+                         (notes ? " and " + std::to_string(notes) + (notes == 1 ? " note" : " notes") : "");
+        const std::string printed = messagesText(r.render.diagnostics, false, folder, true);
+        if (printed != warnings_printed_ && !printed.empty())
+            std::printf("view: %s\n%s", warning_title_.c_str(), printed.c_str());
+        warnings_printed_ = printed;
     } else {
         const RenderFailure failure = describeFailure(spec_, r);
         const std::string& title = failure.title;
-        const std::string& text = failure.text;
+        const std::string folder = (fs::path(opt_.submission_root) / spec_.id).string();
+        // Each error with the lines around it; the terminal adds the command that opens it.
+        std::string text = messagesText(r.render.diagnostics, true, folder, true);
+        error_text_ = messagesText(r.render.diagnostics, true, folder, false);
+        if (error_text_.empty()) text = error_text_ = failure.text;
         error_title_ = title + (student_ ? " - the last good picture is shown" : "");
-        error_text_ = text;
         const std::string printed = title + "\n" + text;
         if (printed != last_printed_error_) {
             std::printf("view: %s\n%s", title.c_str(), text.c_str());

@@ -64,9 +64,12 @@ std::int64_t nowNs() {
 void Viewer::layout() {
     int w = 0, h = 0;
     glfwGetWindowSize(window_, &w, &h);
-    const float panel = 340.0f;
+    // Controls on the left, the picture, the verdict and grade on the right (as the page has them).
+    const float panel = 320.0f;
+    const float results = std::clamp(static_cast<float>(w) * 0.27f, 240.0f, 380.0f);
     drawControls(panel, static_cast<float>(h));
-    drawPicture(panel, static_cast<float>(w) - panel, static_cast<float>(h));
+    drawPicture(panel, std::max(0.0f, static_cast<float>(w) - panel - results), static_cast<float>(h));
+    drawResults(static_cast<float>(w) - results, results, static_cast<float>(h));
 }
 
 // Reads the back buffer just drawn: the picture one pixel per image pixel (the centre of each
@@ -239,6 +242,7 @@ int Viewer::run() {
             if (screenshot_due || done_frames) {
                 if (!opt_.screenshot.empty() || !opt_.screenshot_window.empty())
                     saveScreenshots(opt_.screenshot, opt_.screenshot_window);
+                if (!opt_.panel_text.empty()) savePanelText(opt_.panel_text);
                 glfwSetWindowShouldClose(window_, GLFW_TRUE);
             }
             if (done_reloads) screenshot_due = true;

@@ -1,7 +1,7 @@
 // The student's window as one class, Viewer, whose parts live in files of their own: the main
 // loop and the window (viewer_window.cpp), renders and grades asked and taken
 // (viewer_renders.cpp), the image on screen and its judgement (viewer_shown.cpp), keys and mouse
-// (viewer_input.cpp), the panel of controls, verdict and grade (viewer_panels.cpp), the picture
+// (viewer_input.cpp), the panels of controls, verdict and grade (viewer_panels.cpp), the picture
 // (viewer_picture.cpp) and the debug view of the scene's vertex data (viewer_debug.cpp).
 // Private to the viewer; runViewer (viewer.h) is its only way in.
 #pragma once
@@ -22,6 +22,7 @@
 #include "shaderlab/live/file_watch.h"
 #include "shaderlab/live/render_service.h"
 #include "shaderlab/viewer/viewer.h"
+#include "viewer_grade_lines.h"
 #include "viewer_jobs.h"
 
 struct GLFWwindow;
@@ -110,17 +111,20 @@ class Viewer {
     void orbitByMouse();
     // viewer_panels.cpp
     void drawControls(float width, float height);
+    void drawResults(float x, float width, float height);
     void drawImageList(const std::vector<PassImage>& mine);
     void drawVerdict(float height);
     void drawGrade();
     void drawKeys();
+    void buildGradeLines();
+    void savePanelText(const std::string& path) const;
     // viewer_picture.cpp
     void drawPicture(float x, float width, float height);
     void drawImage(float area_w, float area_h);
     void placeImage(const Texture& tex, float area_w, float area_h);
     void drawMissing(const std::string& why, float area_w, float area_h);
     void drawInspector();
-    void drawErrors(float height, float error_h);
+    void drawMessages(const std::string& title, const std::string& text, bool error, float top, float h);
     // viewer_debug.cpp
     void setDebug(DebugView view);
     void requestDebug();
@@ -156,6 +160,8 @@ class Viewer {
     int reloads_shown_ = 0;
     std::string error_title_, error_text_;  // the last failed render (cleared by a good one)
     std::string last_printed_error_;
+    // The warnings of the picture on screen (with the lines around each), and the last printed.
+    std::string warning_title_, warning_text_, warnings_printed_;
 
     // The debug view of the vertex data: which one is on (Off: the lab's picture), and the last
     // one drawn, for what.
@@ -182,6 +188,7 @@ class Viewer {
     std::optional<std::uint64_t> grade_done_;
     std::optional<grader::ReportLab> grade_;
     std::string grade_error_;
+    std::vector<PanelLine> grade_lines_;  // the goals, failing scenes and hints of grade_
 
     // Derived, recomputed when `dirty_` is set.
     bool dirty_ = true;

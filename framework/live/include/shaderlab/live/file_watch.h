@@ -33,6 +33,10 @@ class FolderWatch {
     const std::vector<std::string>& changedFiles() const { return changed_; }
     // The newest modification time among them, in nanoseconds since the epoch (0: a removal only).
     std::int64_t changedMtimeNs() const { return changed_mtime_ns_; }
+    // The files saved again with the same contents since the last call (an editor saving a buffer
+    // it did not change): no change for poll(), but a student who saves wants a sign that it was
+    // seen. Each settled save is handed out once.
+    std::vector<std::string> takeSavedUnchanged();
 
   private:
     std::map<std::string, FileState> snapshot();
@@ -45,6 +49,7 @@ class FolderWatch {
     bool pending_ = false;
     std::vector<std::string> changed_;
     std::int64_t changed_mtime_ns_ = 0;
+    std::vector<std::string> saved_unchanged_;
 };
 
 }  // namespace shaderlab::viewer

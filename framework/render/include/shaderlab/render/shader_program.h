@@ -52,19 +52,37 @@ std::vector<Diagnostic> parseInfoLog(const std::string& log, const std::string& 
 // hang: it ends with whatever it computed, and a loop whose result is unused is removed. Either
 // way a shader that never terminates on a GPU could pass. A guarded program counts, per shader
 // invocation, the iterations of all its loops (a call in every `for` and `while` condition);
-// past kLoopGuardLimit every loop ends at once and the invocation adds 1 to its stage's counter
-// in a storage buffer at binding kLoopGuardBinding (uint[2]: vertex, fragment), which the
-// renderer reads after each pass. The limit sits below llvmpipe's own so that it is always met
-// first; the labs' loops stay far below it (the irradiance convolution of lab 07, the largest,
-// runs 6 x 16 x 16 + 6 x 16 + 6 = 1,638).
+// past kLoopGuardLimit every loop ends at once and the invocation adds 1 to a counter in a
+// storage buffer at binding kLoopGuardBinding, which the renderer reads after each pass. There is
+// a counter for each stage, source string and line (kLoopGuardWords uints: stage-major, then
+// kLoopGuardFiles source strings of kLoopGuardLines lines each; a later file or line counts in the
+// last), so the counter says where the loop was (the preprocessor's __LINE__, which the `#line`
+// directives make the student's own, and the number of the last `#line`); loopSite() reads that
+// back. The limit sits below llvmpipe's own so that it is always met first; the labs' loops stay
+// far below it (the irradiance convolution of lab 07, the largest, runs 6 x 16 x 16 + 6 x 16 + 6 =
+// 1,638).
 constexpr int kLoopGuardLimit = 60000;
 constexpr unsigned kLoopGuardBinding = 7;
+constexpr int kLoopGuardFiles = 8;
+constexpr int kLoopGuardLines = 2048;
+constexpr int kLoopGuardWords = 2 * kLoopGuardFiles * kLoopGuardLines;
 // `prepared` (a prepareSource() text) with a guard call in the condition of every `for` and
 // `while` (`do ... while` included) outside comments: `while (c)` becomes
-// `while (shaderlab_loop_tick() && (c))`. Lines and the text outside the conditions are kept.
+// `while (shaderlab_loop_tick() && (c))`. Lines and the text outside the conditions are kept;
+// before each `#line N F` the guard's file number is set to F (two directives).
 std::string guardLoops(const std::string& prepared);
 // The declarations a guarded stage needs (stage 0: vertex, 1: fragment), for the prelude.
 std::string loopGuardPrelude(int stage);
+
+// The loop the guard stopped, in the student's files: the file as the diagnostics name it, the
+// 1-based line and the column of its `for`/`while`/`do` (0 when the line holds none or several),
+// and the line's text. `file` is empty when the place is unknown.
+struct LoopSite {
+    std::string file;
+    int line = 0;
+    int column = 0;
+    std::string source_line;
+};
 
 struct StageLog {
     std::string file;
@@ -114,6 +132,10 @@ class ShaderProgram {
                const std::string& fragment_file, const std::string& fragment_text);
 
     bool loopGuarded() const { return loop_guarded_; }
+    // The loop at `line` of source string `file` of a guarded stage (0: vertex, 1: fragment), as
+    // its counter in the guard's buffer names it (kLoopGuardWords); an empty site for a place the
+    // stage does not have.
+    LoopSite loopSite(int stage, int file, int line) const;
     bool compiled() const { return compiled_; }
     bool linked() const { return linked_; }
     unsigned id() const { return program_; }
@@ -147,6 +169,8 @@ class ShaderProgram {
     std::vector<UniformSlot> uniform_list_;
     std::vector<FragmentOutput> outputs_;
     std::string prepared_[2];
+    // Each stage's files by source-string number and their text, for loopSite().
+    std::vector<std::string> stage_files_[2], stage_texts_[2];
     struct Default {
         int location;
         unsigned type;

@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -34,6 +35,10 @@ struct WorkbenchOptions {
     IsolationLimits grade_limits{10.0, 30.0, std::size_t(2048) << 20};  // `check`'s
     bool grade = true;                                                  // grade the lab on every save
     std::chrono::milliseconds poll{20};                                 // the folder watch
+    // What the terminal is told, one message at a time (several lines at most), from the
+    // workbench's threads: saves, pictures, errors with the lines around them and the editor
+    // command that opens them, grades. Unset: nothing is said.
+    std::function<void(const std::string& message)> say;
 };
 
 // What a picture request names: one image of a snapshot, in one form (Debug: of a debug view's).

@@ -36,6 +36,7 @@ struct ViewerOptions {
     int exit_after_reloads = 0;
     std::string screenshot;         // at exit: the picture as the window shows it, one pixel per image pixel
     std::string screenshot_window;  // at exit: the whole window, panels included
+    std::string panel_text;         // at exit: the lines of the grade and verdict panels, as drawn
     std::string view_mode = "student";      // student | reference | diff | split
     DebugView debug_view = DebugView::Off;  // first picture: a debug view (Off: the lab's picture)
     int width = 1180, height = 760;
