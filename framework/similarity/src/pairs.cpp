@@ -133,6 +133,9 @@ void comparePairs(const std::string& lab, const std::vector<Document>& docs, con
     out->stats.documents = n;
     out->stats.empty_documents =
         std::count_if(docs.begin(), docs.end(), [](const Document& d) { return d.fingerprints.empty(); });
+    out->stats.short_documents = std::count_if(docs.begin(), docs.end(), [&](const Document& d) {
+        return !d.fingerprints.empty() && d.fingerprints.size() < options.min_shared;
+    });
     out->stats.fingerprints = postings.size();
     out->stats.common_fingerprints = common.size();
     out->stats.common_limit = limit;

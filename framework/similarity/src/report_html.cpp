@@ -74,7 +74,11 @@ void writeLab(std::ostringstream& o, const SimilarityReport& report, const LabSt
               const std::vector<std::string>& views) {
     o << "<h2 id=\"" << htmlEscape(s.lab) << "\">" << htmlEscape(s.lab) << "</h2>\n<p>"
       << count(s.documents, "document") << " (" << s.empty_documents
-      << " with nothing of their own once the starter is masked), " << count(s.pairs_flagged, "flagged pair")
+      << " with nothing of their own once the starter is masked";
+    if (s.short_documents > 0)
+        o << ", " << s.short_documents << " with fewer than " << report.options.min_shared
+          << " fingerprints of their own: too little to call a copy, read those by hand";
+    o << "), " << count(s.pairs_flagged, "flagged pair")
       << ", " << count(s.clusters, "cluster") << ". A student's closest match here scores "
       << percent(s.median_closest) << " in the median: what work written apart shares in this lab.</p>\n";
     bool any_cluster = false;

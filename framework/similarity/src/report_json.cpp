@@ -72,6 +72,7 @@ std::string pairsJson(const SimilarityReport& report, const std::vector<std::str
         labs.push_back(json{{"lab", s.lab},
                             {"documents", s.documents},
                             {"empty_documents", s.empty_documents},
+                            {"short_documents", s.short_documents},
                             {"fingerprints", s.fingerprints},
                             {"common_fingerprints", s.common_fingerprints},
                             {"common_limit", s.common_limit},
