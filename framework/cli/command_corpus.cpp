@@ -57,6 +57,35 @@ struct MistakeRun {
     fs::path out_dir;
 };
 
+// Whether case `a` is the simpler explanation of a picture `b` draws too: it fails fewer goals, all
+// among b's (b adds a second mistake to a's), or the same goals with a's work in its functions and
+// b's inlined (b's goals judged on the whole shaders).
+bool simplerCase(const Case& a, const Case& b) {
+    const std::set<std::string> fa(a.fails.begin(), a.fails.end()), fb(b.fails.begin(), b.fails.end());
+    if (!std::includes(fb.begin(), fb.end(), fa.begin(), fa.end())) return false;
+    return fa.size() < fb.size() || (a.whole.empty() && !b.whole.empty());
+}
+
+// A picture that a mistake draws like a simpler one (simplerCase) is left to the simpler one: two
+// mistakes at once, or one mistake inlined into main, would otherwise make the picture ambiguous
+// and the one-mistake hint would be lost with it (dropAmbiguousHints).
+void leaveToSimplerCases(LabHints* hints, const std::map<std::string, const Case*>& cases) {
+    std::vector<bool> drop(hints->hints.size(), false);
+    for (std::size_t i = 0; i < hints->hints.size(); ++i)
+        for (std::size_t j = 0; j < hints->hints.size(); ++j) {
+            const MistakeHint &a = hints->hints[i], &b = hints->hints[j];
+            if (i == j || a.scene != b.scene || a.image != b.image || a.picture.width != b.picture.width ||
+                a.picture.height != b.picture.height || !simplerCase(*cases.at(a.mistake), *cases.at(b.mistake)))
+                continue;
+            const grader::PsnrResult p = grader::computePsnr(a.picture, b.picture);
+            if (p.ok && p.psnr_db >= hints->min_psnr_db) drop[j] = true;
+        }
+    std::vector<MistakeHint> kept;
+    for (std::size_t i = 0; i < hints->hints.size(); ++i)
+        if (!drop[i]) kept.push_back(std::move(hints->hints[i]));
+    hints->hints = std::move(kept);
+}
+
 // A lab's known-mistake hints from its graded mistakes: for every scene a mistake fails, its
 // picture of the scene's first wrong image (as the report wrote it), made small, except the
 // `unstable` ones; then the pictures two mistakes share are dropped, since they cannot tell the
@@ -92,6 +121,9 @@ LabHints collectHints(const std::vector<MistakeRun>& runs, const std::vector<std
         }
     }
     const std::size_t all = hints.hints.size();
+    std::map<std::string, const Case*> cases;
+    for (const MistakeRun& run : runs) cases[run.c->name] = run.c;
+    leaveToSimplerCases(&hints, cases);
     dropAmbiguousHints(&hints);
     if (dropped != nullptr) *dropped = all - hints.hints.size();
     return hints;

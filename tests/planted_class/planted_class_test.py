@@ -254,10 +254,13 @@ class PlantedClass(unittest.TestCase):
         self.assertEqual(false_flags, [])
         print("\n[planted class] similarity: %d of %d planted copies flagged; %d of %d pairs written apart "
               "flagged" % (copies, copies, len(false_flags), independent))
-        blinn = next(p for p in self.pairs["pairs"] if p["lab"] == "01-phong"
-                     and {p["a"]["student"], p["b"]["student"]} == {"quinn", "rosa"})
-        self.assertFalse(blinn["flagged"])
-        self.assertTrue(blinn["why"].startswith("not flagged: shares "), blinn["why"])
+        # The two Blinn-Phong solutions written apart: not flagged (listed for reading, or not at all
+        # where they share less than the listing's floor).
+        blinn = [p for p in self.pairs["pairs"] if p["lab"] == "01-phong"
+                 and {p["a"]["student"], p["b"]["student"]} == {"quinn", "rosa"}]
+        for p in blinn:
+            self.assertFalse(p["flagged"])
+            self.assertTrue(p["why"].startswith("not flagged: shares "), p["why"])
         for p in self.pairs["pairs"]:
             self.assertTrue(p["why"].startswith("flagged: " if p["flagged"] else "not flagged: "), p)
 

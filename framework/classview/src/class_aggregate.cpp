@@ -147,6 +147,9 @@ void countGoals(const grader::ReportLab* l, const std::string& status, LabCounti
     std::map<std::string, const grader::ReportGoal*> own;
     if (l)
         for (const grader::ReportGoal& g : l->goals) own[g.id] = &g;
+    // Per goal failed on the student's own work: the known mistakes seen on its scenes.
+    std::map<std::size_t, std::set<std::string>> behind;
+    std::set<std::string> behind_alone;  // those behind a goal whose work was judged alone
     for (std::size_t i = 0; i < c->lab.goals.size(); ++i) {
         GoalShare& goal = c->lab.goals[i];
         ++goal.of;
@@ -164,14 +167,24 @@ void countGoals(const grader::ReportLab* l, const std::string& status, LabCounti
             continue;
         }
         ++goal.own_failed;
+        const bool whole = !it->second->judged_note.empty();
+        if (whole) ++goal.own_failed_whole;
         const std::set<std::string> scenes = goalScenes(*it->second);
-        std::set<std::string> behind;
+        std::set<std::string>& mistakes = behind[i];
         for (const grader::ReportScene& sc : l->scenes)
-            if (!sc.hint.mistake.empty() && scenes.count(sc.name)) behind.insert(sc.hint.mistake);
-        if (behind.empty()) ++goal.unexplained;
-        for (const std::string& m : behind) {
+            if (!sc.hint.mistake.empty() && scenes.count(sc.name)) mistakes.insert(sc.hint.mistake);
+        if (!whole) behind_alone.insert(mistakes.begin(), mistakes.end());
+    }
+    // A mistake is listed under the goals it breaks: where a goal judged alone shows it, not also
+    // under a goal whose work could not be taken alone (whose whole shaders show every mistake).
+    for (auto& [i, mistakes] : behind) {
+        if (mistakes.empty()) ++c->lab.goals[i].unexplained;
+        if (!own.at(c->lab.goals[i].id)->judged_note.empty())
+            for (auto m = mistakes.begin(); m != mistakes.end();)
+                m = behind_alone.count(*m) ? mistakes.erase(m) : std::next(m);
+        for (const std::string& m : mistakes) {
             ++c->goal_mistakes[i][m];
-            c->mistake_goals[c->mistake_index.at(m)].insert(goal.id);
+            c->mistake_goals[c->mistake_index.at(m)].insert(c->lab.goals[i].id);
         }
     }
 }
@@ -363,6 +376,7 @@ std::vector<ReteachItem> reteachFirst(const std::vector<LabClass>& labs, std::si
             r.met = g.met;
             r.of = g.of;
             r.own_failed = g.own_failed;
+            r.own_failed_whole = g.own_failed_whole;
             if (!g.mistakes.empty()) {
                 r.mistake = g.mistakes.front().mistake;
                 r.mistake_students = g.mistakes.front().students;
@@ -376,6 +390,9 @@ std::vector<ReteachItem> reteachFirst(const std::vector<LabClass>& labs, std::si
         // share a.own_failed/a.of > b.own_failed/b.of without rounding; then more such students first.
         const long lhs = long(a.own_failed) * b.of, rhs = long(b.own_failed) * a.of;
         if (lhs != rhs) return lhs > rhs;
+        // A goal whose failures were judged on the student's own work for it before one whose work
+        // could not be taken alone (the whole shaders failed it, maybe because of another goal).
+        if (a.own_failed_whole != b.own_failed_whole) return a.own_failed_whole < b.own_failed_whole;
         return a.own_failed > b.own_failed;
     });
     std::vector<ReteachItem> first;

@@ -38,6 +38,7 @@ json goal(const GoalShare& g) {
             {"of", g.of},
             {"share", number(g.share())},
             {"own_failed", g.own_failed},
+            {"own_failed_whole", g.own_failed_whole},
             {"failed_because", g.failed_because},
             {"mistakes", mistakes},
             {"not_rendered", g.not_rendered},

@@ -77,6 +77,9 @@ struct GoalShare {
     // because a goal it rests on was not met (reports graded with lab.json's depends_on), and how
     // many did not render the lab at all (compile error, timeout, crash).
     int own_failed = 0;
+    // Of own_failed: those whose work for it could not be taken alone (renamed, inlined, left as the
+    // starter had it: report goal judged "whole" with a judged_note), so the whole shaders failed it.
+    int own_failed_whole = 0;
     int failed_because = 0;
     int not_rendered = 0;
     // Of those whose own work failed: the known mistakes recognised on its scenes (most first),
@@ -131,6 +134,7 @@ struct ReteachItem {
     std::string lab, lab_title, goal, goal_title;
     int met = 0, of = 0;
     int own_failed = 0;          // students whose own work for it failed (GoalShare::own_failed)
+    int own_failed_whole = 0;    // of those, judged on the whole shaders (GoalShare::own_failed_whole)
     std::string mistake, about;  // the known mistake most often behind it; empty when none
     int mistake_students = 0;
     std::string picture;  // the mistake's picture, relative to the output folder; empty: none
