@@ -16,6 +16,7 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "commands.h"
 #include "shaderlab/authoring/corpus_cases.h"
@@ -124,7 +125,16 @@ bool mutateLab(const MutantsArgs& args, const std::string& labs_root, const std:
             return false;
         }
         std::vector<Mutant> mine = mutateFile(f, t.text);
-        all.insert(all.end(), std::make_move_iterator(mine.begin()), std::make_move_iterator(mine.end()));
+        // Functions the starter gives as they are (a lighting helper, debug views) are the course's
+        // code, not the student's work: no mistake of the lab is made there.
+        const FileText starter = readFile((fs::path(spec.lab_dir) / f).string(), 1u << 20);
+        const std::set<std::string> provided =
+            starter.ok ? providedFunctions(t.text, starter.text) : std::set<std::string>{};
+        const std::set<int> given = starter.ok ? providedLines(t.text, starter.text) : std::set<int>{};
+        for (Mutant& m : mine) {
+            const bool moved = m.op == "into-loop" || m.op == "out-of-loop";
+            if (!provided.count(m.function) && (moved || !given.count(m.line))) all.push_back(std::move(m));
+        }
     }
     tally->made = static_cast<int>(all.size());
     GradeOptions options;

@@ -1,10 +1,12 @@
 // Mutants of a reference file; see mutants.h.
 #include "shaderlab/authoring/mutants.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <string_view>
 
 #include "shaderlab/glsl/glsl_outline.h"
 
@@ -327,6 +329,67 @@ class Mutator {
 
 std::vector<Mutant> mutateFile(const std::string& file, const std::string& text) {
     return Mutator(file, text).run();
+}
+
+namespace {
+
+// A line without its // comment, its spacing collapsed: "" for a blank or comment-only line.
+std::string lineKey(std::string_view line) {
+    const std::size_t comment = line.find("//");
+    if (comment != std::string_view::npos) line = line.substr(0, comment);
+    std::string key;
+    for (char c : line) {
+        const bool space = c == ' ' || c == '\t' || c == '\r';
+        if (space && (key.empty() || key.back() == ' ')) continue;
+        key += space ? ' ' : c;
+    }
+    while (!key.empty() && key.back() == ' ') key.pop_back();
+    return key;
+}
+
+// Calls `f(line number, key)` for each line of `text` in the byte range [begin, end).
+template <typename F>
+void forLines(const std::string& text, std::size_t begin, std::size_t end, F f) {
+    int number = 1 + static_cast<int>(std::count(text.begin(), text.begin() + begin, '\n'));
+    std::size_t start = text.rfind('\n', begin == 0 ? 0 : begin - 1);
+    start = start == std::string::npos || begin == 0 ? 0 : start + 1;
+    while (start < end) {
+        std::size_t stop = text.find('\n', start);
+        if (stop == std::string::npos) stop = text.size();
+        f(number++, lineKey(std::string_view(text).substr(start, stop - start)));
+        start = stop + 1;
+    }
+}
+
+}  // namespace
+
+std::set<int> providedLines(const std::string& reference, const std::string& starter) {
+    const glsl::Outline r = glsl::outlineGlsl(reference), s = glsl::outlineGlsl(starter);
+    std::set<int> provided;
+    for (const glsl::Declaration& d : r.declarations) {
+        if (d.kind != glsl::DeclKind::Function || d.names.empty()) continue;
+        std::set<std::string> given;
+        for (const glsl::Declaration* t : glsl::declarationsNamed(s, d.names.front()))
+            if (t->kind == glsl::DeclKind::Function)
+                forLines(starter, t->begin, t->end, [&](int, const std::string& key) { given.insert(key); });
+        forLines(reference, d.begin, d.end, [&](int line, const std::string& key) {
+            if (!key.empty() && given.count(key)) provided.insert(line);
+        });
+    }
+    return provided;
+}
+
+std::set<std::string> providedFunctions(const std::string& reference, const std::string& starter) {
+    const glsl::Outline r = glsl::outlineGlsl(reference), s = glsl::outlineGlsl(starter);
+    std::set<std::string> provided;
+    for (const glsl::Declaration& d : r.declarations) {
+        if (d.kind != glsl::DeclKind::Function || d.names.empty()) continue;
+        const std::string text = glsl::canonicalText(reference, r, d);
+        for (const glsl::Declaration* t : glsl::declarationsNamed(s, d.names.front()))
+            if (t->kind == glsl::DeclKind::Function && glsl::canonicalText(starter, s, *t) == text)
+                provided.insert(d.names.front());
+    }
+    return provided;
 }
 
 }  // namespace shaderlab::authoring

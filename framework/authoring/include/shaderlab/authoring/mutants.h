@@ -20,6 +20,7 @@
 // mutant of what the code computes, and is left out by the caller).
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -38,5 +39,15 @@ struct Mutant {
 // Every mutant of `text` (the file `file`) in the bodies of its functions, in the order of the
 // text; two mutants that give the same file are one (the first).
 std::vector<Mutant> mutateFile(const std::string& file, const std::string& text);
+
+// The functions of `reference` that the starter `starter` gives as they are (the same head and
+// body, token for token): code the course provides, not the student's work, so not mutated.
+std::set<std::string> providedFunctions(const std::string& reference, const std::string& starter);
+
+// The lines of `reference` (numbered from 1) inside a function that also holds that line in the
+// starter (comments and spacing aside): statements the course gives, such as a debug view in a main
+// the student completes. A mistake is not made by changing them in place (moving one into or out of
+// a loop is: that is mutated still).
+std::set<int> providedLines(const std::string& reference, const std::string& starter);
 
 }  // namespace shaderlab::authoring
