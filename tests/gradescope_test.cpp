@@ -194,7 +194,8 @@ TEST(GradescopeBundle, RunAutograderWritesResultsInASimulatedLayout) {
     // One file of two: the message names the lab's file as the student knows it.
     const json half = grade((kSource / "reference_solutions" / kLab).string(), {"phong.vert"});
     EXPECT_DOUBLE_EQ(half["score"].get<double>(), 0.0);
-    EXPECT_NE(half.dump().find("phong.frag: file not found (its folder holds: phong.vert)"), std::string::npos)
+    EXPECT_NE(half.dump().find("phong.frag: file not found (its folder holds: phong.vert)"),
+              std::string::npos)
         << half.dump().substr(0, 4000);
 }
 

@@ -75,7 +75,8 @@ void leaveToSimplerCases(LabHints* hints, const std::map<std::string, const Case
         for (std::size_t j = 0; j < hints->hints.size(); ++j) {
             const MistakeHint &a = hints->hints[i], &b = hints->hints[j];
             if (i == j || a.scene != b.scene || a.image != b.image || a.picture.width != b.picture.width ||
-                a.picture.height != b.picture.height || !simplerCase(*cases.at(a.mistake), *cases.at(b.mistake)))
+                a.picture.height != b.picture.height ||
+                !simplerCase(*cases.at(a.mistake), *cases.at(b.mistake)))
                 continue;
             const grader::PsnrResult p = grader::computePsnr(a.picture, b.picture);
             if (p.ok && p.psnr_db >= hints->min_psnr_db) drop[j] = true;

@@ -30,8 +30,8 @@ bool drawProbingLoops(GLuint loop_guard, int width, int height, const std::funct
         draw();
         // Reading the counters (one per stage, file and line) waits for the strip to be drawn.
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, loop_guard);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(counts.size() * sizeof(GLuint)),
-                           counts.data());
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                           static_cast<GLsizeiptr>(counts.size() * sizeof(GLuint)), counts.data());
         clean = std::all_of(counts.begin(), counts.end(), [](GLuint c) { return c == 0; });
     }
     glDisable(GL_SCISSOR_TEST);

@@ -78,9 +78,9 @@ void writeLab(std::ostringstream& o, const SimilarityReport& report, const LabSt
     if (s.short_documents > 0)
         o << ", " << s.short_documents << " with fewer than " << report.options.min_shared
           << " fingerprints of their own: too little to call a copy, read those by hand";
-    o << "), " << count(s.pairs_flagged, "flagged pair")
-      << ", " << count(s.clusters, "cluster") << ". A student's closest match here scores "
-      << percent(s.median_closest) << " in the median: what work written apart shares in this lab.</p>\n";
+    o << "), " << count(s.pairs_flagged, "flagged pair") << ", " << count(s.clusters, "cluster")
+      << ". A student's closest match here scores " << percent(s.median_closest)
+      << " in the median: what work written apart shares in this lab.</p>\n";
     bool any_cluster = false;
     for (const Cluster& c : report.clusters) {
         if (c.lab != s.lab) continue;

@@ -127,7 +127,8 @@ TEST(SimilarityClass, ShortSolutionsToOneTemplateAreNoCopyAndClustersDoNotChain)
     EXPECT_FALSE(apart.flagged) << apart.score << " against a bar of " << apart.bar;
     // Listed or not, the pair is said to be under the bar.
     if (!apart.a.student.empty()) {
-        EXPECT_EQ(pairVerdict(apart, r.options).rfind("not flagged: ", 0), 0u) << pairVerdict(apart, r.options);
+        EXPECT_EQ(pairVerdict(apart, r.options).rfind("not flagged: ", 0), 0u)
+            << pairVerdict(apart, r.options);
     }
     const PairResult copy = pair(r, "nina", "quinn");
     EXPECT_TRUE(copy.flagged) << copy.score << " against a bar of " << copy.bar;

@@ -51,7 +51,9 @@ const std::set<std::pair<std::string, std::string>> kAlternativesOfOneHand = {
 
 bool editOfTheReference(const std::string& lab, const std::string& name) {
     const std::string id = lab + "/" + name;
-    return kEditsOfTheReference.count(id) + kShortEditsUnderTheBar.count(id) + kEditsTooShortToList.count(id) > 0;
+    return kEditsOfTheReference.count(id) + kShortEditsUnderTheBar.count(id) +
+               kEditsTooShortToList.count(id) >
+           0;
 }
 
 const PairResult* findPair(const SimilarityReport& r, const std::string& lab, const std::string& x,
@@ -185,8 +187,9 @@ TEST(SimilarityCorpus, CopiesAreFlaggedAlternativesAreNot) {
             EXPECT_FALSE(p && p->flagged) << lab << ": " << x << " and " << y << " score " << describe(p);
             highest_independent = std::max(highest_independent, scoreOf(p));
         }
-    std::printf("copies flagged: %d of %d (lowest score %.2f; %d references or alternatives too small to judge)\n",
-                copies_flagged, copies, lowest_copy, too_small);
+    std::printf(
+        "copies flagged: %d of %d (lowest score %.2f; %d references or alternatives too small to judge)\n",
+        copies_flagged, copies, lowest_copy, too_small);
     std::printf(
         "independent pairs flagged: %d of %d against the reference, %d of %d between alternatives "
         "(highest score %.2f); edits of the reference flagged: %d of %zu\n",

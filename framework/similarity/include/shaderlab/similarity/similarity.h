@@ -121,7 +121,7 @@ struct LabStats {
     // Some of their own, but fewer than min_shared fingerprints: too little to call a copy of
     // anything (a lab whose work is a few lines of the README's formulas), so never flagged.
     std::size_t short_documents = 0;
-    std::size_t fingerprints = 0;     // distinct, over the lab
+    std::size_t fingerprints = 0;  // distinct, over the lab
     std::size_t common_fingerprints = 0;
     std::size_t common_limit = 0;  // documents a fingerprint may be in before it counts as common
     std::size_t pairs_listed = 0, pairs_flagged = 0, clusters = 0;
