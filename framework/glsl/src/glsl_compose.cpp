@@ -297,14 +297,22 @@ class Composer {
     std::string assemble() const {
         std::size_t at = in_.reference.size();
         for (const auto& [r, mine] : taken_) at = std::min(at, r->begin);
-        std::set<std::string> called;
-        for (const auto& [r, mine] : taken_) called.insert(mine->uses.begin(), mine->uses.end());
-        for (const Declaration* d : imports_) called.insert(d->uses.begin(), d->uses.end());
+        // A function needs a prototype where a taken function or an import calls it before its
+        // definition: an import sits at `at`, a taken function where the reference's was.
+        std::set<std::string> imported_calls;
+        for (const Declaration* d : imports_) imported_calls.insert(d->uses.begin(), d->uses.end());
+        const auto calledBefore = [&](const Declaration& callee) {
+            if (imported_calls.count(callee.names[0])) return true;
+            for (const auto& [r, mine] : taken_)
+                if (r->begin < callee.begin &&
+                    std::find(mine->uses.begin(), mine->uses.end(), callee.names[0]) != mine->uses.end())
+                    return true;
+            return false;
+        };
         std::string prototypes;
         std::set<std::string> declared;
         for (const Declaration& d : ref_.declarations) {
-            if (d.kind != DeclKind::Function || d.begin < at || d.names[0] == "main" ||
-                !called.count(d.names[0]))
+            if (d.kind != DeclKind::Function || d.begin < at || d.names[0] == "main" || !calledBefore(d))
                 continue;
             const std::string head = d.head + ";";
             if (declared.insert(head).second) prototypes += head + "\n";

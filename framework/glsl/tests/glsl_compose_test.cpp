@@ -192,6 +192,14 @@ TEST(GlslCompose, TheReferenceItselfComposesToItself) {
     EXPECT_EQ(c.text, kReference);
 }
 
+// main with the functions it calls, all taken: they are defined before main, so no prototype is
+// needed (12-normal-mapping's world_space goal takes world_normal, world_tangent and main).
+TEST(GlslCompose, NoPrototypeForATakenFunctionDefinedBeforeItsCaller) {
+    const Composed c = compose(kReference, {"diffuse", "highlight", "main"});
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(c.text, kReference);
+}
+
 TEST(GlslCompose, AUniformOfAnotherTypeIsTheStudents) {
     // The lab feeds a shadow map to a sampler2D or a sampler2DShadow, whichever is declared.
     const std::string reference = R"(uniform sampler2DShadow u_map;
