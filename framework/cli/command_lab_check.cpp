@@ -369,6 +369,11 @@ Verdict checkMutants(const LabCheckPlaces& at, const LabCheckArgs& args) {
                                 std::to_string(lab.value("killed", 0)) + " killed, " +
                                 std::to_string(lab.value("equivalent", 0)) + " declared equivalent, " +
                                 std::to_string(lab.value("does_not_compile", 0)) + " not compiling";
+    // Every line the starter's: the reference holds no work of the student's to mutate.
+    if (lab.value("made", 0) == 0)
+        return fail(
+            "no mutants: the reference's student files are the starter's in every function "
+            "(mutants leaves the starter's code alone), so no goal's work is tested");
     if (!survivors.empty())
         return fail(figures + ", " + std::to_string(survivors.size()) +
                         " undeclared survivors: show each in a scene, or declare it in " +
