@@ -96,9 +96,14 @@ class Mutator {
     bool is(std::size_t k, const char* op) const {
         return k < t_.size() && t_[k].kind == TokenKind::Operator && glsl::tokenText(s_, t_[k]) == op;
     }
+    // Whether the token before k ends a value (so an operator at k is binary): a name, a number, a
+    // gl_ variable (`gl_PointCoord - 1.0`; the lexer calls it a keyword, as it does `return`), or a
+    // closing bracket.
     bool valueBefore(std::size_t k) const {
-        return k > 0 && (t_[k - 1].kind == TokenKind::Identifier || t_[k - 1].kind == TokenKind::Number ||
-                         is(k - 1, ")") || is(k - 1, "]"));
+        if (k == 0) return false;
+        const Token& t = t_[k - 1];
+        return t.kind == TokenKind::Identifier || t.kind == TokenKind::Number || is(k - 1, ")") ||
+               is(k - 1, "]") || (t.kind == TokenKind::Keyword && text(k - 1).rfind("gl_", 0) == 0);
     }
 
     std::size_t closing(std::size_t open, std::size_t limit) const {

@@ -51,6 +51,16 @@ TEST(Mutants, EachOperatorChangesOnePlace) {
     for (const Mutant& m : all) EXPECT_EQ(m.text.substr(0, 19), "uniform float u_k;\n") << m.id;
 }
 
+// A minus after a gl_ variable is binary: swapped as an operator, never dropped as a sign (which
+// would not compile).
+TEST(Mutants, AMinusAfterAGlVariableIsBinary) {
+    const std::map<std::string, std::string> c = changes(mutateFile(
+        "p.frag",
+        "out vec4 o;\nvoid main() {\n    vec2 d = gl_PointCoord - 1.0;\n    o = vec4(d, 0.0, 1.0);\n}\n"));
+    EXPECT_EQ(c.at("p.frag:main:operator#1"), "`-` -> `+`");
+    for (const auto& [id, change] : c) EXPECT_EQ(id.find(":sign#"), std::string::npos) << id << " " << change;
+}
+
 TEST(Mutants, TheTextIsTheFileWithOneChange) {
     for (const Mutant& m : mutateFile("lit.frag", kShader)) {
         if (m.id != "lit.frag:shade:distribute#1") continue;
