@@ -9,10 +9,12 @@
 //   own folder renders, through the shaderlab program, with the texture's colour.
 // - the generator's conventions for 12-normal-mapping: TANGENT unit, perpendicular to NORMAL, w = -1
 //   exactly on the mirrored half, the same frame the loader's MikkTSpace computes without it; the
-//   normal map's +Y pointing up the image, where the height rises.
+//   normal map's +Y pointing up the image, where the height rises; bent_quad's tangents, those of
+//   the flat quad, far from perpendicular to its bent normals (that is what the mesh is for).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -218,6 +220,40 @@ TEST(LabAssets, MirroredMeshesHaveUnitTangentsAndTheirHandedness) {
         }
         EXPECT_GT(mirrored, 0) << name;
     }
+}
+
+// bent_quad is mirrored_quad with its normals bent outward and its TANGENT left as computed for
+// the flat normals: a tangent baked for other normals, the one case in the lab where the frame's
+// Gram-Schmidt step changes the picture (bent_probe). Same positions, texture coordinates and
+// tangents as the flat quad, unit normals facing out, and tangents up to about 31 degrees off
+// perpendicular to them, and none along the mirror seam x = 0, where the normals lean only up or
+// down.
+TEST(LabAssets, BentQuadKeepsTheFlatTangentsUnderBentNormals) {
+    const shaderlab::Scene flat = load(kNormalMapping / "mirrored_quad.gltf");
+    const shaderlab::Scene bent = load(kNormalMapping / "bent_quad.gltf");
+    ASSERT_EQ(flat.meshes.size(), 1u);
+    ASSERT_EQ(bent.meshes.size(), 1u);
+    const shaderlab::Mesh &f = flat.meshes[0], &b = bent.meshes[0];
+    ASSERT_FALSE(b.tangents_generated) << "bent_quad has no TANGENT";
+    ASSERT_EQ(b.positions.size(), f.positions.size());
+    ASSERT_EQ(b.tangents.size(), f.tangents.size());
+    ASSERT_EQ(b.texcoords.size(), f.texcoords.size());
+    float most_off = 0.0f;
+    for (std::size_t i = 0; i < b.positions.size(); ++i) {
+        EXPECT_EQ(b.positions[i], f.positions[i]) << "vertex " << i;
+        EXPECT_EQ(b.texcoords[i], f.texcoords[i]) << "vertex " << i;
+        EXPECT_EQ(b.tangents[i], f.tangents[i]) << "vertex " << i;
+        EXPECT_NEAR(glm::length(b.normals[i]), 1.0f, 1e-5f) << "vertex " << i;
+        EXPECT_GT(b.normals[i].z, 0.7f) << "vertex " << i;
+        const float off = std::abs(glm::dot(glm::vec3(b.tangents[i]), b.normals[i]));
+        if (std::abs(b.positions[i].x) < 1e-6f) {
+            EXPECT_LT(off, 1e-6f) << "vertex " << i << " on the seam";
+        }
+        most_off = std::max(most_off, off);
+    }
+    EXPECT_GT(most_off, std::sin(glm::radians(30.0f))) << "the tangents are all but perpendicular to the "
+                                                          "normals: bent_probe would show no frame without "
+                                                          "Gram-Schmidt";
 }
 
 // The generator's tangents (Lengyel's method) and the ones the loader computes for the same mesh

@@ -11,7 +11,10 @@
 //   (computeTangents in scene_writer.h): a quad and a sphere whose left half (x < 0) has its
 //   texture mirrored, u running the other way, so w = -1 there, as an artist mirrors half a model
 //   to reuse its texture; and the same sphere unmirrored (w = +1 everywhere) under a turned and
-//   under a stretched node, for judging the tangent frame's transform to world space.
+//   under a stretched node, for judging the tangent frame's transform to world space;
+// - bent_quad: the mirrored quad with its normals bent outward as on a shallow dome and its flat
+//   tangents kept, a tangent baked for other normals: the one mesh whose TANGENT is not
+//   perpendicular to NORMAL, for judging the step that makes it so again (Gram-Schmidt).
 //
 // The meshes carry no material textures: the lab feeds the map to its shaders through lab.json
 // `inputs` ("texture": "assets/bricks_normal.png").
@@ -130,6 +133,18 @@ Geometry mirroredQuad(int cols, int rows) {
     return g;
 }
 
+// mirroredQuad(4, 8) with each normal bent outward to normalize(0.6 x, 0.6 y, 1), its tangents
+// left as they were computed for the flat normals, (+-1, 0, 0): up to 31 degrees from
+// perpendicular at the middle of the left and right edges, none along x = 0. Interpolation does
+// not bring them back, so a frame that skips the Gram-Schmidt step (or gets it wrong) turns the
+// probe elsewhere on this mesh, and on no other mesh of the lab.
+Geometry bentQuad() {
+    Geometry g = mirroredQuad(4, 8);
+    for (Vertex& v : g.vertices)
+        v.normal = glm::normalize(glm::dvec3(0.6 * v.position.x, 0.6 * v.position.y, 1.0));
+    return g;
+}
+
 // Part of a UV sphere (as uvSphere: phi from +Z towards +X, theta from the north pole) for phi in
 // [phi0, phi1], with u = u_of_phi(phi) and v = 2 theta / pi, so texels are square at the equator
 // when u gains 2 per half turn.
@@ -202,6 +217,7 @@ bool writeNormalMappingAssets(const fs::path& dir) {
     return writeImage(heightImage(h), dir / "bricks_height.png") &&
            writeImage(normalMap(h), dir / "bricks_normal.png") &&
            writeMesh(dir, "mirrored_quad", mirroredQuad(4, 8), {0.0, 0.0, 3.2}) &&
+           writeMesh(dir, "bent_quad", bentQuad(), {0.0, 0.0, 3.2}) &&
            writeMesh(dir, "mirrored_sphere", mirroredSphere(), {0.0, 0.8, 3.6}) &&
            writeMesh(dir, "turned_sphere", sphere, {0.0, 0.8, 3.6}, glm::dvec3(1.0), lean) &&
            writeMesh(dir, "stretched_sphere", sphere, {0.0, 0.8, 4.4}, {1.8, 0.6, 1.0}, roll);
