@@ -31,6 +31,23 @@ std::vector<std::string> labIds() {
     return ids;
 }
 
+// `shaderlab ARGS` with stderr in the output; exit_code -1 when it did not exit by itself.
+struct CliRun {
+    int exit_code = -1;
+    std::string output;
+};
+
+CliRun runCli(const std::string& args) {
+    CliRun r;
+    FILE* pipe = popen((std::string(SHADERLAB_CLI) + args + " 2>&1").c_str(), "r");
+    if (pipe == nullptr) return r;
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
+    const int status = pclose(pipe);
+    if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+    return r;
+}
+
 class LabCorpus : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LabCorpus, HasEnoughMistakesAndAlternatives) {
@@ -51,16 +68,9 @@ TEST_P(LabCorpus, EveryVerdictIsTheExpectedOne) {
     const fs::path out =
         fs::temp_directory_path() / ("shaderlab_corpus_" + GetParam() + "_" + std::to_string(::getpid()));
     fs::remove_all(out);
-    const std::string cmd =
-        std::string(SHADERLAB_CLI) + " corpus --lab " + GetParam() + " --out " + out.string() + " 2>&1";
-    std::string output;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, pipe)) output += buf;
-    const int status = pclose(pipe);
-    ASSERT_TRUE(WIFEXITED(status)) << output;
-    EXPECT_EQ(WEXITSTATUS(status), 0) << output;
+    const CliRun r = runCli(" corpus --lab " + GetParam() + " --out " + out.string());
+    const std::string& output = r.output;
+    EXPECT_EQ(r.exit_code, 0) << output;
     std::ifstream in(out / "corpus.json");
     const json summary = json::parse(in, nullptr, false);
     ASSERT_FALSE(summary.is_discarded()) << output;
@@ -94,16 +104,9 @@ TEST_P(LabMutants, NoUndeclaredSurvivor) {
     const fs::path out =
         fs::temp_directory_path() / ("shaderlab_mutants_" + GetParam() + "_" + std::to_string(::getpid()));
     fs::remove_all(out);
-    const std::string cmd =
-        std::string(SHADERLAB_CLI) + " mutants " + GetParam() + " --out " + out.string() + " 2>&1";
-    std::string output;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, pipe)) output += buf;
-    const int status = pclose(pipe);
-    ASSERT_TRUE(WIFEXITED(status)) << output;
-    EXPECT_EQ(WEXITSTATUS(status), 0) << output;
+    const CliRun r = runCli(" mutants " + GetParam() + " --out " + out.string());
+    const std::string& output = r.output;
+    EXPECT_EQ(r.exit_code, 0) << output;
     std::ifstream in(out / "mutants.json");
     const json result = json::parse(in, nullptr, false);
     ASSERT_FALSE(result.is_discarded()) << output;

@@ -161,10 +161,21 @@ class Composer {
         return any_work;
     }
 
+    // Whether the starter gives the reference's function `r` as it is: no work to do there.
+    bool givenComplete(const Outline& starter, const Declaration& r) const {
+        for (const Declaration* d : declarationsNamed(starter, r.names[0]))
+            if (d->kind == DeclKind::Function && sameSignature(*d, r) &&
+                canonicalText(in_.starter, starter, *d) == canonicalText(in_.reference, ref_, r))
+                return true;
+        return false;
+    }
+
+    // Names the taken functions that had work to do (startersOnly), not those the starter gives whole.
     std::string starterNote() const {
+        const Outline starter = outlineGlsl(in_.starter);
         std::string names;
         for (const auto& [r, mine] : taken_)
-            if (names.find("`" + r->names[0] + "`") == std::string::npos)
+            if (!givenComplete(starter, *r) && names.find("`" + r->names[0] + "`") == std::string::npos)
                 names += (names.empty() ? "`" : ", `") + r->names[0] + "`";
         const bool several = names.find(',') != std::string::npos;
         return names + " in " + in_.file + (several ? " are" : " is") + " still as the starter had " +

@@ -162,6 +162,10 @@ TEST(GlslCompose, RefusesWithAReason) {
     EXPECT_FALSE(c.ok);
     EXPECT_TRUE(c.starter_untouched);
     EXPECT_EQ(c.note, "`diffuse` in lit.frag is still as the starter had it");
+    // main, which the starter gives whole, is no work left undone: the note does not name it.
+    c = compose(kStarter, {"diffuse", "main"});
+    EXPECT_TRUE(c.starter_untouched);
+    EXPECT_EQ(c.note, "`diffuse` in lit.frag is still as the starter had it");
 
     const std::string global = R"(vec3 g_n;
 float diffuse(vec3 n, vec3 l) { return dot(g_n, l); }
