@@ -415,7 +415,9 @@ function renderGrade(s) {
   const goals = lab.goals || [];
   const built = lab.status !== 'compile_error' && lab.status !== 'link_error' && lab.status !== 'missing';
   let message = lab.message || '';
-  if (!goals.length && lab.status !== 'passed') {
+  // Not attempted: the message already says what to do (write your solution); there is no goal
+  // to judge yet, and nothing failed to render.
+  if (!goals.length && lab.status !== 'passed' && lab.status !== 'not_attempted') {
     if (message && !/[.!?]$/.test(message)) message += '.';
     message += (message ? ' ' : '') + (built
       ? 'No goal could be judged: every scene must render first.'
