@@ -72,7 +72,7 @@ TEST(GlslOutline, KindsAndNames) {
 
 TEST(GlslOutline, FunctionSignaturesAndUses) {
     const Outline o = outlineGlsl(kShader);
-    const Declaration& shade = only(o, "shade");
+    const Declaration shade = only(o, "shade");  // a copy: GCC 14 takes the name's temporary for its owner
     EXPECT_EQ(shade.return_type, "vec3");
     EXPECT_EQ(shade.parameter_types,
               (std::vector<std::string>{"vec3", "vec3", "out float", "inout vec2[2]"}));
