@@ -619,7 +619,13 @@ async function showPicture() {
     return;
   }
   const key = urls.a + '|' + (urls.b || '') + '|' + ui.scale + '|' + ui.split;
-  if (key === ui.shownKey) { placeOverlays(urls); return; }
+  if (key === ui.shownKey) {
+    // The same image, but its verdict or label may have come since it was drawn.
+    ui.shown = urls;
+    labelPicture(urls);
+    placeOverlays(urls);
+    return;
+  }
   const ticket = ++drawing;
   let a, b = null;
   try {
@@ -634,9 +640,7 @@ async function showPicture() {
   ui.shownKey = key;
   ui.shown = urls;
   draw();
-  $('picture-label').textContent = urls.label;
-  $('picture-label').className = urls.debug ? 'debug-label' : '';
-  $('picture').setAttribute('aria-label', pictureName(urls));
+  labelPicture(urls);
   placeOverlays(urls);
   renderStale(ui.state);
   window.workbench.shownKey = key;
@@ -644,6 +648,12 @@ async function showPicture() {
   window.workbench.loads += 1;
   if (urls.debug) window.workbench.shownDebugSeq = urls.seq;
   else window.workbench.shownSeq = urls.seq;
+}
+
+function labelPicture(urls) {
+  $('picture-label').textContent = urls.label;
+  $('picture-label').className = urls.debug ? 'debug-label' : '';
+  $('picture').setAttribute('aria-label', pictureName(urls));
 }
 
 // What the canvas shows, in words, for its accessible name.
