@@ -12,6 +12,7 @@ announced in a live region; the light theme; the terminal, the favicon, a save w
 
 Run: /usr/bin/python3 tests/serve/serve_workbench_test.py --shaderlab build/framework/shaderlab --source .
 Exits 77 (CTest's skip) where chromium or python3-websocket is missing."""
+import json
 import os
 import re
 import subprocess
@@ -130,6 +131,17 @@ class WorkbenchTest(unittest.TestCase):
             self.assertTrue(notes, st["picture"]["diagnostics"])
             page.wait_for("!document.getElementById('warnings').classList.contains('hidden')", 10, "the notes")
             self.assertIn(notes[0]["message"], self.text(page, "warnings"))
+            # Not attempted: the lab's goals are listed as what to do, each with the work it asks for.
+            self.assertIn("NOT ATTEMPTED", self.text(page, "badge"))
+            with open(os.path.join(ARGS.source, "labs", "01-phong", "lab.json")) as f:
+                lab_goals = json.load(f)["goals"]
+            page.wait_for("document.getElementById('goals').children.length === %d" % len(lab_goals), 10,
+                          "the goals to do")
+            for i, g in enumerate(lab_goals):
+                item = self.text(page, "goal-%d" % (i + 1))
+                self.assertIn(g["title"], item)
+                for work in g["work"]:
+                    self.assertIn(work.replace(":", ": "), item)
 
     # 2. Older parts greyed and labelled: while a grade runs, and after a failed save.
     def test_02_stale_parts_greyed_and_labelled(self):

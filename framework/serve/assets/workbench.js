@@ -424,8 +424,19 @@ function renderGrade(s) {
       : 'No goal can be judged until your shaders build: fix the error shown above your picture.');
   }
   $('grade-message').textContent = message;
-  $('goals').replaceChildren(...goals.map((goal, i) => goalItem(lab, goal, i)));
+  // The starter, untouched: no goal is judged yet, but the goals are what to do, each with its work.
+  if (lab.status === 'not_attempted') $('goals').replaceChildren(...s.lab.goals.map(todoItem));
+  else $('goals').replaceChildren(...goals.map((goal, i) => goalItem(lab, goal, i)));
   renderGradeScenes(lab);
+}
+
+// A goal still to do (the lab is not attempted): its title, its points and the work it asks for.
+function todoItem(goal, i) {
+  const li = el('li', { class: 'todo-mark', id: 'goal-' + (i + 1) });
+  li.append('○ ' + goal.title + ' (' + fmt(goal.points, 1) + ' pt' + (goal.points === 1 ? '' : 's') + ')');
+  const work = goal.work || [];
+  li.append(el('div', { class: 'why', text: work.length ? 'your work: ' + work.join(', ') : 'not judged yet' }));
+  return li;
 }
 
 // One goal: met or not, its points, why not (the goals it rests on, by number; the checks that

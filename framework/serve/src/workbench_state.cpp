@@ -185,8 +185,14 @@ json Workbench::state() const {
     json debug_views = json::array();
     for (const DebugViewInfo& v : debugViews()) debug_views.push_back({{"name", v.name}, {"label", v.label}});
     json goals = json::array();
-    for (const GoalSpec& g : w.opt.spec.goals)
-        goals.push_back({{"id", g.id}, {"title", g.title}, {"points", g.points}, {"scenes", g.scenes}});
+    for (const GoalSpec& g : w.opt.spec.goals) {
+        // The work a goal asks for ("phong.frag: diffuse", or a whole file), for the list of
+        // goals the page shows before there is a grade to show them in.
+        json work = json::array();
+        for (const GoalWork& k : g.work) work.push_back(k.function.empty() ? k.file : k.file + ": " + k.function);
+        goals.push_back(
+            {{"id", g.id}, {"title", g.title}, {"points", g.points}, {"scenes", g.scenes}, {"work", work}});
+    }
     json out = {
         {"version", w.version},
         {"lab",
