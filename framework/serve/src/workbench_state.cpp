@@ -189,7 +189,8 @@ json Workbench::state() const {
         // The work a goal asks for ("phong.frag: diffuse", or a whole file), for the list of
         // goals the page shows before there is a grade to show them in.
         json work = json::array();
-        for (const GoalWork& k : g.work) work.push_back(k.function.empty() ? k.file : k.file + ": " + k.function);
+        for (const GoalWork& k : g.work)
+            work.push_back(k.function.empty() ? k.file : k.file + ": " + k.function);
         goals.push_back(
             {{"id", g.id}, {"title", g.title}, {"points", g.points}, {"scenes", g.scenes}, {"work", work}});
     }
