@@ -104,6 +104,7 @@ bool loadCases(const fs::path& file, const LabSpec& spec, std::vector<Case>* out
         if (c.contains("fails")) k.fails = c["fails"].get<std::vector<std::string>>();
         if (c.contains("delete")) k.remove = c["delete"].get<std::vector<std::string>>();
         if (c.contains("whole")) k.whole = c["whole"].get<std::vector<std::string>>();
+        if (c.contains("given")) k.given = c["given"].get<std::vector<std::string>>();
         if (c.contains("diagnostic")) k.diagnostic = {{c["diagnostic"]["file"], c["diagnostic"]["line"]}};
         k.timeout_s = c.value("timeout", 0.0);
         checkCase(c, k, path, spec, errors);

@@ -23,6 +23,18 @@ void checkJudgements(const LabSpec& spec, const Case& c, const grader::ReportLab
         if (!listed && failed_with_work && g.judged != "alone")
             add("goal " + g.id + " must be judged on the student's own work for it (judged " + g.judged +
                 (g.judged_note.empty() ? "" : ": " + g.judged_note) + ")");
+        // Starter-given code the case changes goes with each goal it fails judged alone; a goal it
+        // fails without such code is judged without it.
+        if (g.met || listed) continue;
+        const std::vector<std::string>& with = c.given;
+        if (std::set<std::string>(g.judged_with.begin(), g.judged_with.end()) !=
+            std::set<std::string>(with.begin(), with.end())) {
+            std::string said;
+            for (const std::string& w : g.judged_with) said += (said.empty() ? "" : ", ") + w;
+            add("goal " + g.id + " was judged with " + (said.empty() ? "no given code" : said) +
+                (with.empty() ? "; the case changes none it uses"
+                              : "; the case changes " + c.given.front() + (c.given.size() > 1 ? ", ..." : "")));
+        }
     }
 }
 

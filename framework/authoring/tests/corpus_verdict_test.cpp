@@ -48,6 +48,20 @@ Case mistake(std::vector<std::string> fails, std::vector<std::string> whole = {}
     return c;
 }
 
+TEST(CorpusVerdict, GivenCodeTheCaseChangesIsJudgedWithTheGoal) {
+    const LabSpec spec = twoGoals();
+    Case c = mistake({"lambert"});
+    c.given = {"phong.frag: main"};
+    grader::ReportLab lab = graded(false, "alone");
+    EXPECT_EQ(expectationsMissed(spec, c, lab),
+              "goal lambert was judged with no given code; the case changes phong.frag: main");
+    lab.goals[0].judged_with = {"phong.frag: main"};
+    EXPECT_EQ(expectationsMissed(spec, c, lab), "");
+    // Judged with given code a case does not say it changes.
+    EXPECT_EQ(expectationsMissed(spec, mistake({"lambert"}), lab),
+              "goal lambert was judged with phong.frag: main; the case changes none it uses");
+}
+
 TEST(CorpusVerdict, AMistakeFailsItsGoalJudgedOnItsOwnWork) {
     const LabSpec spec = twoGoals();
     EXPECT_EQ(expectationsMissed(spec, mistake({"lambert"}), graded(false, "alone")), "");

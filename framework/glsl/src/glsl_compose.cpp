@@ -89,6 +89,7 @@ class Composer {
                 return fail(in_.file + " has #" + d.directive +
                             " blocks, so its functions cannot be taken alone");
         if (!pairTakenFunctions(&out.note)) return fail(out.note);
+        takeChangedCallers(&out.callers);
         if (startersOnly()) {
             Composed c = fail(starterNote());
             c.starter_untouched = true;
@@ -140,6 +141,35 @@ class Composer {
             }
         }
         return true;
+    }
+
+    // Code no goal asks for but the student changed (a `main` the starter gives, say) goes with
+    // the taken functions it calls, so that breaking given code costs the goal it feeds instead of
+    // nothing. A `main` that calls no goal's function (the work written into it) goes with
+    // whatever is taken from the file. Only a function the reference has with the same signature
+    // can be swapped.
+    void takeChangedCallers(std::vector<std::string>* names) {
+        for (const Declaration& d : stu_.declarations) {
+            if (d.kind != DeclKind::Function || d.names.empty()) continue;
+            const std::string& name = d.names[0];
+            if (contains(in_.take, name) || contains(in_.keep, name) || isTakenDecl(&d)) continue;
+            const Declaration* r = nullptr;
+            bool same = false;
+            for (const Declaration* x : declarationsNamed(ref_, name)) {
+                if (x->kind != DeclKind::Function) continue;
+                if (sameSignature(*x, d)) r = x;
+                same = same || canonicalText(in_.reference, ref_, *x) == canonicalText(in_.student, stu_, d);
+            }
+            if (!r || same) continue;
+            const bool feeds = std::any_of(d.uses.begin(), d.uses.end(),
+                                           [&](const std::string& u) { return contains(in_.take, u); });
+            const bool calls_work = feeds || std::any_of(d.uses.begin(), d.uses.end(), [&](const std::string& u) {
+                return contains(in_.keep, u);
+            });
+            if (!feeds && (calls_work || name != "main")) continue;
+            taken_.push_back({r, &d});
+            names->push_back(name);
+        }
     }
 
     // True when every taken function is the starter's, where the starter differs from the

@@ -81,12 +81,88 @@ float diffuse(vec3 n, vec3 l) { return dot(n, l); }
 float highlight(vec3 n, vec3 l) { return 1.0; }
 void main() { o_color = vec4(diffuse(normalize(v_normal), vec3(1.0)) + highlight(v_normal, v_normal)); }
 )";
-    const Composed c = compose(student, {"diffuse"});
+    // (highlight and main are other goals' work: kept.)
+    const Composed c = compose(student, {"diffuse"}, {"highlight", "main"});
     ASSERT_TRUE(c.ok) << c.note;
     EXPECT_EQ(function(c.text, "diffuse"), "float diffuse ( vec3 n , vec3 l ) { return dot ( n , l ) ; }");
     EXPECT_EQ(function(c.text, "highlight"), function(kReference, "highlight"));
     EXPECT_EQ(function(c.text, "main"), function(kReference, "main"));
     EXPECT_TRUE(c.imported.empty());
+    EXPECT_TRUE(c.callers.empty());
+}
+
+TEST(GlslCompose, ChangedCodeNoGoalAsksForGoesWithTheWorkItCalls) {
+    // main is given by the starter and no goal's work; this student broke it (the gain squared).
+    const std::string student = R"(#version 330 core
+in vec3 v_normal;
+uniform float u_gain;
+out vec4 o_color;
+float diffuse(vec3 n, vec3 l) { return max(dot(n, l), 0.0); }
+float highlight(vec3 n, vec3 l) { return 0.0; }
+void main() {
+    vec3 n = normalize(v_normal);
+    vec3 l = normalize(vec3(1.0));
+    o_color = vec4(vec3(diffuse(n, l) + highlight(n, l)) * u_gain * u_gain, 1.0);
+}
+)";
+    // main calls diffuse, which is taken: it comes with it, and highlight stays the reference's.
+    const Composed with_diffuse = compose(student, {"diffuse"}, {"highlight"});
+    ASSERT_TRUE(with_diffuse.ok) << with_diffuse.note;
+    EXPECT_EQ(with_diffuse.callers, (std::vector<std::string>{"main"}));
+    EXPECT_EQ(function(with_diffuse.text, "main"), function(student, "main"));
+    EXPECT_EQ(function(with_diffuse.text, "highlight"), function(kReference, "highlight"));
+    // main as the starter gave it: nothing comes along.
+    std::string given = student;
+    given.replace(given.find(" * u_gain * u_gain"), 18, " * u_gain");
+    const Composed untouched = compose(given, {"diffuse"}, {"highlight"});
+    ASSERT_TRUE(untouched.ok) << untouched.note;
+    EXPECT_TRUE(untouched.callers.empty());
+    EXPECT_EQ(function(untouched.text, "main"), function(kReference, "main"));
+    // A changed helper that a taken function calls comes along as an import, not as a caller.
+    const std::string helper = R"(#version 330 core
+in vec3 v_normal;
+uniform float u_gain;
+out vec4 o_color;
+const float kScale = 1.0;
+float clamp01(float x) { return max(x, 0.0); }
+float diffuse(vec3 n, vec3 l) { return clamp01(dot(n, l)) * kScale; }
+float highlight(vec3 n, vec3 l) { return pow(clamp01(dot(reflect(-l, n), vec3(0.0, 0.0, 1.0))), 8.0); }
+void main() {
+    vec3 n = normalize(v_normal);
+    vec3 l = normalize(vec3(1.0));
+    o_color = vec4(vec3(diffuse(n, l) + highlight(n, l)) * u_gain, 1.0);
+}
+)";
+    const Composed h = compose(helper, {"highlight"}, {"diffuse", "main"});
+    ASSERT_TRUE(h.ok) << h.note;
+    EXPECT_TRUE(h.callers.empty());
+    EXPECT_EQ(h.imported, (std::vector<std::string>{"clamp01_student"}));
+}
+
+TEST(GlslCompose, AMainWithTheWorkWrittenIntoItGoesWithWhatIsTaken) {
+    // main computes the diffuse term itself and calls no function of the lab; the student's
+    // diffuse is done too, so the work is not the starter's.
+    const std::string student = R"(#version 330 core
+in vec3 v_normal;
+uniform float u_gain;
+out vec4 o_color;
+float diffuse(vec3 n, vec3 l) { return max(dot(n, l), 0.0); }
+float highlight(vec3 n, vec3 l) { return 0.0; }
+void main() {
+    vec3 n = normalize(v_normal);
+    o_color = vec4(vec3(dot(n, vec3(0.577))) * u_gain, 1.0);
+}
+)";
+    const Composed c = compose(student, {"diffuse"}, {"highlight"});
+    ASSERT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(c.callers, (std::vector<std::string>{"main"}));
+    // With diffuse still the starter's, it is the case the composer refuses: the work is elsewhere.
+    std::string stub = student;
+    const std::string done = "return max(dot(n, l), 0.0);";
+    stub.replace(stub.find(done), done.size(), "return 0.0;");
+    const Composed refused = compose(stub, {"diffuse"}, {"highlight"});
+    EXPECT_FALSE(refused.ok);
+    EXPECT_TRUE(refused.starter_untouched) << refused.note;
 }
 
 TEST(GlslCompose, HelpersComeAlongRenamedWhereTheyClash) {
@@ -171,9 +247,13 @@ TEST(GlslCompose, RefusesWithAReason) {
 float diffuse(vec3 n, vec3 l) { return dot(g_n, l); }
 void main() { g_n = normalize(vec3(1.0)); }
 )";
-    c = compose(global, {"diffuse"});
+    c = compose(global, {"diffuse"}, {"main"});
     EXPECT_FALSE(c.ok);
     EXPECT_EQ(c.note, "`diffuse` in lit.frag reads the global variable `g_n`, which `main` sets");
+    // Where no goal asks for main, the student's main comes along, and with it the value.
+    c = compose(global, {"diffuse"});
+    EXPECT_TRUE(c.ok) << c.note;
+    EXPECT_EQ(c.callers, (std::vector<std::string>{"main"}));
 
     c = compose("#ifdef X\nfloat diffuse(vec3 n, vec3 l) { return 1.0; }\n#endif\n", {"diffuse"});
     EXPECT_FALSE(c.ok);

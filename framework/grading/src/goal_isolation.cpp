@@ -70,7 +70,7 @@ std::map<std::string, std::vector<std::string>> othersWork(const LabSpec& spec, 
 // The student files of `goal`'s render: the reference's, with the goal's work taken from the
 // student. False, with the reason in `note`, when the work cannot be taken alone.
 bool composeGoal(const LabSpec& spec, const GoalSpec& goal, const LabTexts& texts,
-                 std::map<std::string, std::string>* files, std::string* note) {
+                 std::map<std::string, std::string>* files, std::vector<std::string>* with, std::string* note) {
     *files = texts.reference;
     std::map<std::string, std::vector<std::string>> take;  // file -> functions; empty: whole file
     std::set<std::string> whole;
@@ -109,6 +109,7 @@ bool composeGoal(const LabSpec& spec, const GoalSpec& goal, const LabTexts& text
             return false;
         }
         (*files)[file] = c.text;
+        for (const std::string& f : c.callers) with->push_back(file + ": " + f);
     }
     return true;
 }
@@ -208,7 +209,9 @@ void isolateGoals(const LabSpec& spec, const std::string& submission_dir, const 
             continue;
         }
         std::map<std::string, std::string> files;
-        if (!composeGoal(spec, spec.goals[i], texts, &files, &g.judged_note)) continue;
+        std::vector<std::string> with;
+        if (!composeGoal(spec, spec.goals[i], texts, &files, &with, &g.judged_note)) continue;
+        g.judged_with = std::move(with);
         if (files == texts.reference) {
             // The student's work for this goal is the reference's, token for token where it
             // differs at all: it is right, and something else spoils the goal's pictures.
@@ -239,6 +242,7 @@ void isolateGoals(const LabSpec& spec, const std::string& submission_dir, const 
         for (const std::size_t i : jobs[j].goals) {
             grader::ReportGoal& g = (*goals)[i];
             if (renders[j].status != IsolatedStatus::Ok) {
+                g.judged_with.clear();
                 g.judged_note = std::string("your work for it did not render alone (") +
                                 isolatedStatusName(renders[j].status) + "): " + renders[j].message;
                 continue;

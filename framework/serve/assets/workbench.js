@@ -478,6 +478,9 @@ function judgedNote(goal) {
     } else {
       parts.push('judged on your own work for it');
     }
+    // Code no goal asks for, changed, that uses the goal's work: judged with it (report.json judged_with).
+    const w = goal.judged_with || [];
+    if (w.length) parts.push('with your changes to ' + w.join(', ') + ', code the starter gave that uses it');
   }
   if (goal.judged_note) parts.push(goal.judged_note);
   return parts.join('; ');

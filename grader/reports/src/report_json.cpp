@@ -187,6 +187,7 @@ std::string reportToJson(const Report& report) {
             if (!g.judged.empty()) goal["judged"] = g.judged;
             if (!g.judged_note.empty()) goal["judged_note"] = g.judged_note;
             if (!g.whole_failing.empty()) goal["whole_failing"] = g.whole_failing;
+            if (!g.judged_with.empty()) goal["judged_with"] = g.judged_with;
             goals.push_back(std::move(goal));
         }
         labs.push_back({{"id", lab.id},
@@ -264,6 +265,7 @@ bool reportFromJson(const std::string& text, Report* out, std::string* error) {
             goal.judged = g.value("judged", "");
             goal.judged_note = g.value("judged_note", "");
             goal.whole_failing = g.value("whole_failing", std::vector<std::string>{});
+            goal.judged_with = g.value("judged_with", std::vector<std::string>{});
             lab.goals.push_back(std::move(goal));
         }
         for (const json& s : l.value("scenes", json::array())) {

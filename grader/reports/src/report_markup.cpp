@@ -527,12 +527,22 @@ void writeScene(std::ostringstream& h, const ReportLab& lab, const ReportScene& 
 
 }  // namespace
 
+std::string judgedWithText(const ReportGoal& goal) {
+    if (goal.judged_with.empty()) return "";
+    std::string list;
+    for (std::size_t i = 0; i < goal.judged_with.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == goal.judged_with.size() ? " and " : ", ") + goal.judged_with[i];
+    return "with your changes to " + list + ", code the starter gave that uses it";
+}
+
 std::string goalJudgement(const ReportGoal& goal) {
+    const std::string with = judgedWithText(goal);
     if (goal.judged == "alone" && goal.met && !goal.whole_failing.empty())
         return "Your own work for it is right: its pictures fail only because of another part.";
     if (goal.judged == "alone" && goal.met) return "Your own work for it is right.";
     if (goal.judged == "alone")
-        return "Judged on your own work for it, the rest taken from the reference solution: still wrong.";
+        return "Judged on your own work for it" + (with.empty() ? "" : " (" + with + ")") +
+               ", the rest taken from the reference solution: still wrong.";
     if (goal.judged == "whole" && !goal.met && !goal.judged_note.empty())
         return "Judged on your whole shaders, because your work for it could not be taken alone: " +
                goal.judged_note + ".";

@@ -80,6 +80,7 @@ grader::Report sampleReport() {
     lit.met = true;
     lit.judged = "alone";
     lit.whole_failing = {"torus/shade"};
+    lit.judged_with = {"phong.frag: main"};
     grader::ReportGoal lobe;
     lobe.id = "highlight";
     lobe.title = "Phong highlight";
@@ -135,6 +136,8 @@ TEST(ReportJson, RoundTripsEveryField) {
     EXPECT_EQ(out.labs[0].goals[1].scenes, std::vector<std::string>{"torus"});
     EXPECT_EQ(out.labs[0].goals[0].judged, "alone");
     EXPECT_EQ(out.labs[0].goals[0].whole_failing, std::vector<std::string>{"torus/shade"});
+    EXPECT_EQ(out.labs[0].goals[0].judged_with, std::vector<std::string>{"phong.frag: main"});
+    EXPECT_TRUE(out.labs[0].goals[1].judged_with.empty());
     EXPECT_EQ(out.labs[0].goals[1].judged_note, in.labs[0].goals[1].judged_note);
     // The optional fields of schema 2.
     const grader::ReportPass& pass = out.labs[0].scenes[1].passes.at(0);
@@ -364,6 +367,13 @@ TEST(ReportGoalJudgement, SaysHowEachGoalWasJudged) {
               "Your own work for it is right: its pictures fail only because of another part.");
     g.met = false;
     EXPECT_NE(grader::goalJudgement(g).find("still wrong"), std::string::npos);
+    g.judged_with = {"grayscale.frag: main"};
+    EXPECT_EQ(grader::goalJudgement(g),
+              "Judged on your own work for it (with your changes to grayscale.frag: main, code the starter "
+              "gave that uses it), the rest taken from the reference solution: still wrong.");
+    g.judged_with.push_back("sobel.frag: main");
+    EXPECT_NE(grader::goalJudgement(g).find("grayscale.frag: main and sobel.frag: main,"), std::string::npos);
+    g.judged_with.clear();
     g.judged = "whole";
     g.judged_note = "phong.frag has no function `vec3 diffuse(vec3 n)`";
     EXPECT_EQ(

@@ -20,6 +20,7 @@ struct Case {
     std::string name, kind, about, status;
     std::vector<std::string> fails, remove;  // remove: "delete"
     std::vector<std::string> whole;          // goals that must be judged on the whole shaders, with a note
+    std::vector<std::string> given;          // starter-given code changed: "file: function" (judged_with)
     std::optional<std::pair<std::string, int>> diagnostic;
     double timeout_s = 0.0;
 };

@@ -7,7 +7,8 @@
 // token is the reference's; what it has under the same name but different is brought along
 // renamed (`name_student`), so nothing clashes. Uniforms, inputs and outputs are the lab's
 // interface: the reference's declarations stand. A function that another goal is judged on
-// (`keep`) stays the reference's even where the student's code calls it.
+// (`keep`) stays the reference's even where the student's code calls it. A function neither taken
+// nor kept that the student changed is taken too when it calls a taken function (`callers`).
 //
 // It composes text; whether the result compiles is the driver's to say. It refuses, with a
 // sentence for the student, what it cannot take alone: a function that is missing or has another
@@ -39,6 +40,9 @@ struct Composed {
     bool starter_untouched = false;
     // The student's declarations brought along besides the functions taken, as named in `text`.
     std::vector<std::string> imported;
+    // Functions no goal asks for that the student changed and that were taken with the work they
+    // call (a `main` the starter gives, say): the student's code, judged with the goal.
+    std::vector<std::string> callers;
 };
 
 Composed composeFunctions(const ComposeInput& in);

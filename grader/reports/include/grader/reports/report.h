@@ -132,6 +132,9 @@ struct ReportGoal {
     // Judged alone: the checks that failed on the whole shaders ("<scene>/<pass>"), which may
     // differ from `failing` (the isolated renders') because of another goal's mistake.
     std::vector<std::string> whole_failing;
+    // Judged alone: code no goal asks for that the student changed and that feeds this goal's
+    // work ("grayscale.frag: main", a function the starter gives), judged with it.
+    std::vector<std::string> judged_with;
 };
 
 struct ReportLab {
@@ -179,6 +182,9 @@ std::string goalsNamed(const ReportLab& lab, const std::vector<std::string>& ids
 // "Judged on your own work for it: ...", "Your own work for it is right ...", "Judged on your
 // whole shaders: <why>." Every report writer, `check` and the workbench say the same.
 std::string goalJudgement(const ReportGoal& goal);
+// A goal's judged_with in words ("with your changes to grayscale.frag: main, code the starter gave
+// that uses it"); empty when it has none.
+std::string judgedWithText(const ReportGoal& goal);
 
 std::string formatDiagnostic(const ReportDiagnostic& d, const std::string& prefix = "",
                              const std::string& indent = "");
