@@ -480,7 +480,7 @@ function judgedNote(goal) {
     }
     // Code no goal asks for, changed, that uses the goal's work: judged with it (report.json judged_with).
     const w = goal.judged_with || [];
-    if (w.length) parts.push('with your changes to ' + w.join(', ') + ', code the starter gave that uses it');
+    if (w.length) parts[parts.length - 1] += ', with your changes to ' + w.join(', ') + ', code the starter gave that uses it';
   }
   if (goal.judged_note) parts.push(goal.judged_note);
   return parts.join('; ');

@@ -42,6 +42,7 @@ grader::ReportLab judgedLab() {
     grader::ReportGoal spec = goal("specular", "Phong highlight", false);
     spec.judged = "alone";
     spec.failing = {"torus_grazing/shade", "sphere_grazing/shade"};
+    spec.judged_with = {"phong.frag: main"};  // the student changed the main the starter gave
     grader::ReportGoal shadows = goal("shadows", "Shadow lookups", false);
     shadows.judged = "whole";
     shadows.judged_note = "its work is in main(), with the rest: it cannot be taken alone";
@@ -85,7 +86,8 @@ TEST(GradeLines, HowEachGoalWasJudged) {
     EXPECT_EQ(judged,
               (std::vector<std::string>{
                   "your own work for it is right; it fails in your whole shader because of another part",
-                  "judged on your own work for it",
+                  "judged on your own work for it, with your changes to phong.frag: main, code the starter gave "
+                  "that uses it",
                   "its work is in main(), with the rest: it cannot be taken alone"}));
     // An older grade without the fields says nothing about it.
     grader::ReportLab old = judgedLab();
