@@ -32,8 +32,9 @@ void checkJudgements(const LabSpec& spec, const Case& c, const grader::ReportLab
             std::string said;
             for (const std::string& w : g.judged_with) said += (said.empty() ? "" : ", ") + w;
             add("goal " + g.id + " was judged with " + (said.empty() ? "no given code" : said) +
-                (with.empty() ? "; the case changes none it uses"
-                              : "; the case changes " + c.given.front() + (c.given.size() > 1 ? ", ..." : "")));
+                (with.empty()
+                     ? "; the case changes none it uses"
+                     : "; the case changes " + c.given.front() + (c.given.size() > 1 ? ", ..." : "")));
         }
     }
 }

@@ -163,9 +163,9 @@ class Composer {
             if (!r || same) continue;
             const bool feeds = std::any_of(d.uses.begin(), d.uses.end(),
                                            [&](const std::string& u) { return contains(in_.take, u); });
-            const bool calls_work = feeds || std::any_of(d.uses.begin(), d.uses.end(), [&](const std::string& u) {
-                return contains(in_.keep, u);
-            });
+            const bool calls_work =
+                feeds || std::any_of(d.uses.begin(), d.uses.end(),
+                                     [&](const std::string& u) { return contains(in_.keep, u); });
             if (!feeds && (calls_work || name != "main")) continue;
             taken_.push_back({r, &d});
             names->push_back(name);

@@ -70,7 +70,8 @@ std::map<std::string, std::vector<std::string>> othersWork(const LabSpec& spec, 
 // The student files of `goal`'s render: the reference's, with the goal's work taken from the
 // student. False, with the reason in `note`, when the work cannot be taken alone.
 bool composeGoal(const LabSpec& spec, const GoalSpec& goal, const LabTexts& texts,
-                 std::map<std::string, std::string>* files, std::vector<std::string>* with, std::string* note) {
+                 std::map<std::string, std::string>* files, std::vector<std::string>* with,
+                 std::string* note) {
     *files = texts.reference;
     std::map<std::string, std::vector<std::string>> take;  // file -> functions; empty: whole file
     std::set<std::string> whole;

@@ -47,7 +47,7 @@ std::vector<PanelLine> gradeLines(const grader::ReportLab& lab) {
                 g.met && !g.whole_failing.empty()
                     ? "your own work for it is right; it fails in your whole shader because of another part"
                     : "judged on your own work for it";
-        const std::string with = grader::judgedWithText(g);
+        const std::string with = g.judged == "alone" ? grader::judgedWithText(g) : std::string();
         if (!with.empty()) judged += ", " + with;
         if (!g.judged_note.empty()) judged += (judged.empty() ? "" : "; ") + g.judged_note;
         if (!judged.empty()) lines.push_back({PanelLine::Judged, judged, ""});
