@@ -83,12 +83,13 @@ TEST(GradeLines, WhyAGoalIsMissedByNumberAndByCheck) {
 
 TEST(GradeLines, HowEachGoalWasJudged) {
     const std::vector<std::string> judged = texts(gradeLines(judgedLab()), PanelLine::Judged);
-    EXPECT_EQ(judged,
-              (std::vector<std::string>{
-                  "your own work for it is right; it fails in your whole shader because of another part",
-                  "judged on your own work for it, with your changes to phong.frag: main, code the starter gave "
-                  "that uses it",
-                  "its work is in main(), with the rest: it cannot be taken alone"}));
+    EXPECT_EQ(
+        judged,
+        (std::vector<std::string>{
+            "your own work for it is right; it fails in your whole shader because of another part",
+            "judged on your own work for it, with your changes to phong.frag: main, code the starter gave "
+            "that uses it",
+            "its work is in main(), with the rest: it cannot be taken alone"}));
     // An older grade without the fields says nothing about it.
     grader::ReportLab old = judgedLab();
     for (grader::ReportGoal& g : old.goals) {
