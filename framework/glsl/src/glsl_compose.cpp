@@ -161,12 +161,11 @@ class Composer {
                 same = same || canonicalText(in_.reference, ref_, *x) == canonicalText(in_.student, stu_, d);
             }
             if (!r || same) continue;
-            const bool feeds = std::any_of(d.uses.begin(), d.uses.end(),
-                                           [&](const std::string& u) { return contains(in_.take, u); });
-            const bool calls_work =
-                feeds || std::any_of(d.uses.begin(), d.uses.end(),
-                                     [&](const std::string& u) { return contains(in_.keep, u); });
-            if (!feeds && (calls_work || name != "main")) continue;
+            const auto calls = [&](const std::vector<std::string>& functions) {
+                return std::any_of(d.uses.begin(), d.uses.end(),
+                                   [&](const std::string& u) { return contains(functions, u); });
+            };
+            if (!calls(in_.take) && (name != "main" || calls(in_.keep))) continue;
             taken_.push_back({r, &d});
             names->push_back(name);
         }
